@@ -1,0 +1,72 @@
+#pragma once
+/// \file
+/// \brief A cell: the RBSF mechanism, the object it carries and the friction between them
+///        (MODEL.md "Files"). SI units; angles in radians.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rbsf/dynamics/shape.h"
+
+namespace rbsf {
+
+/// \brief The rotational base.
+struct BaseParams {
+  double inertia = 0.0;             ///< I_b about the base axis [kg m^2]
+  double theta_min = -M_PI;         ///< lower base angle limit [rad]
+  double theta_max = M_PI;          ///< upper base angle limit [rad]
+  double torque_limit = 0.0;        ///< |tau_theta| bound [N m]
+};
+
+/// \brief One single-jointed (prismatic) finger.
+struct FingerParams {
+  double r = 0.0;             ///< lateral offset along the base x axis [m]
+  double stroke_min = 0.0;    ///< lower stroke limit of l_i [m]
+  double stroke_max = 0.0;    ///< upper stroke limit of l_i [m]
+  double mass = 0.0;          ///< carriage mass m_i [kg]
+  double force_limit = 0.0;   ///< |tau_i| bound [N]
+  double com_offset = 0.0;    ///< s_i: carriage COM at base point (r_i, l_i + s_i) [m]
+  double inertia = 0.0;       ///< J_i: carriage inertia about its COM [kg m^2]
+};
+
+/// \brief The rigid workpart.
+struct ObjectParams {
+  std::shared_ptr<const Shape> shape;  ///< boundary in the object (COM) frame
+  double mass = 0.0;                   ///< m_o [kg]
+  double inertia = 0.0;                ///< I_o about the COM [kg m^2]
+};
+
+/// \brief Coulomb friction at the fingertips.
+struct FrictionParams {
+  double mu_static = 0.5;   ///< mu_s: bound of a sticking contact's force cone
+  double mu_kinetic = 0.0;  ///< mu_k: sliding friction (the paper's 0 by default)
+};
+
+/// \brief Everything the model needs about one jig cell.
+struct Cell {
+  double gravity = 9.81;  ///< g0 [m/s^2]; gravity is (0, -g0) in the world frame
+  BaseParams base;
+  std::vector<FingerParams> fingers;
+  ObjectParams object;
+  FrictionParams friction;
+  std::string name;       ///< file name or label, for messages
+
+  /// \brief Number of fingers m.
+  int numFingers() const { return static_cast<int>(fingers.size()); }
+
+  /// \brief Check every invariant the model relies on (positive masses and inertias,
+  ///        ordered limits, 1 <= m <= kMaxFingers, a shape).
+  /// \throws InputError naming the offending key.
+  void validate() const;
+};
+
+/// \brief Read a cell from a YAML file (format in MODEL.md "Files").
+/// \throws InputError for a missing file, malformed YAML, a missing or non-numeric key,
+///         or an invalid value; the message names the key (e.g. "fingers[1].mass").
+Cell loadCell(const std::string& path);
+
+/// \brief Read a cell from YAML text; `label` names the source in messages.
+Cell parseCell(const std::string& yaml_text, const std::string& label = "<cell>");
+
+}  // namespace rbsf

@@ -1,0 +1,51 @@
+#pragma once
+/// \file
+/// \brief Exact small dense solvers for the contact problems of the model: the LCP of
+///        eqs. 21-24, non-negative least squares, least-distance programming and linear
+///        programming. Sizes are a few dozen at most; every method terminates finitely
+///        and returns an exact (to rounding) answer, never a sampled one.
+
+#include <Eigen/Core>
+
+#include "rbsf/dynamics/types.h"
+
+namespace rbsf {
+
+/// \brief Outcome of solveLcp().
+struct LcpStatus {
+  bool solved = false;  ///< false only if the pivot limit was reached (A not a P-matrix)
+  int pivots = 0;       ///< number of principal pivots performed
+};
+
+/// \brief LCP(A, p): find z >= 0 with w = A z + p >= 0 and z^T w = 0 (eqs. 21-22), by
+///        Murty's least-index principal pivoting, started from the all-active set (every
+///        contact closed), which is the usual answer. Finite and exact when A is a
+///        P-matrix (A = G1^T M^-1 G1 with G1 of full column rank is positive definite).
+///        Allocation-free for n <= kMaxFingers.
+LcpStatus solveLcp(const MatCC& A, const VecC& p, VecC& z, VecC& w);
+
+/// \brief Lawson-Hanson NNLS: minimise |E x - f| subject to x >= 0. Exact active set.
+/// \return false if the iteration limit was hit.
+bool solveNnls(const Eigen::MatrixXd& E, const Eigen::VectorXd& f, Eigen::VectorXd& x);
+
+/// \brief Result of leastNormInPolyhedron() and solveLp().
+enum class SolveStatus { kOptimal, kInfeasible, kUnbounded };
+
+/// \brief Least-norm point of a polyhedron: minimise |x|^2 subject to A_eq x = b_eq and
+///        G x >= h. Reduces to least-distance programming on the null space of A_eq and
+///        solves that through NNLS (Lawson & Hanson, ch. 23). A_eq may have dependent rows
+///        (consistent ones are accepted; an inconsistent system is infeasible). Either
+///        matrix may have zero rows.
+SolveStatus leastNormInPolyhedron(const Eigen::MatrixXd& A_eq, const Eigen::VectorXd& b_eq,
+                                  const Eigen::MatrixXd& G, const Eigen::VectorXd& h,
+                                  Eigen::VectorXd& x);
+
+/// \brief Linear program: minimise c^T x subject to A_eq x = b_eq, G x >= h and
+///        lower <= x <= upper (entries may be +-infinity). Dense two-phase simplex with
+///        Bland's rule (no cycling). On kOptimal, x holds an optimal vertex.
+SolveStatus solveLp(const Eigen::VectorXd& c, const Eigen::MatrixXd& A_eq,
+                    const Eigen::VectorXd& b_eq, const Eigen::MatrixXd& G,
+                    const Eigen::VectorXd& h, const Eigen::VectorXd& lower,
+                    const Eigen::VectorXd& upper, Eigen::VectorXd& x, double* objective = nullptr);
+
+}  // namespace rbsf

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# The project's one entry script (see README "Quick start").
+#   scripts/rbsf.sh run       install what is missing, build Release, run the main job
+#   scripts/rbsf.sh test      install what is missing, build Release, run the whole test suite
+#   scripts/rbsf.sh sanitize  build with AddressSanitizer + UBSan and run the unit tests
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+cd "$root"
+jobs="$(nproc 2>/dev/null || echo 2)"
+
+configure_build() {  # $1 build dir, rest: extra cmake args
+  local dir="$1"; shift
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+  cmake --build "$dir" -j "$jobs"
+}
+
+cmd="${1:-}"
+case "$cmd" in
+  run)
+    ./scripts/install-deps.sh
+    configure_build build
+    ./build/tools/rbsf-analyze --cell cells/default.yaml --pose 0,0.40,0
+    ;;
+  test)
+    ./scripts/install-deps.sh
+    configure_build build
+    ctest --test-dir build --output-on-failure -j "$jobs"
+    ;;
+  sanitize)
+    ./scripts/install-deps.sh
+    configure_build build-asan -DRBSF_SANITIZE=ON -DRBSF_BUILD_BENCHMARKS=OFF
+    ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+      ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
+    ;;
+  *)
+    echo "usage: scripts/rbsf.sh run|test|sanitize" >&2
+    exit 2
+    ;;
+esac
