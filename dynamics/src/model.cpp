@@ -1,0 +1,139 @@
+#include "rbsf/dynamics/model.h"
+
+#include <cmath>
+
+#include "rbsf/dynamics/errors.h"
+
+namespace rbsf {
+
+using layout::kPhi;
+using layout::kTheta;
+using layout::kX;
+using layout::kY;
+using layout::stroke;
+
+RbsfModel::RbsfModel(Cell cell) : cell_(std::move(cell)), m_(cell_.numFingers()) {
+  cell_.validate();
+}
+
+Vec2 RbsfModel::fingertip(const VecQ& q, int i) const {
+  return rotate(q[kTheta], Vec2(cell_.fingers[i].r, q[stroke(i)]));
+}
+
+void RbsfModel::fingertipJacobian(const VecQ& q, int i, Vec2& d_theta, Vec2& d_stroke) const {
+  d_theta = perp(fingertip(q, i));
+  d_stroke = Vec2(-std::sin(q[kTheta]), std::cos(q[kTheta]));
+}
+
+void RbsfModel::updateContacts(const VecQ& q, ModelData& data) const {
+  const Shape& s = shape();
+  const double phi = q[kPhi];
+  const Vec2 x_o(q[kX], q[kY]);
+  data.G1.setZero();
+  data.T.setZero();
+  for (int i = 0; i < m_; ++i) {
+    ContactFrame& c = data.contacts[i];
+    c.tip = fingertip(q, i);
+    const Vec2 tip_local = rotate(-phi, c.tip - x_o);
+    const double hint = data.xi_hint[i];
+    const ClosestPoint cp = std::isfinite(hint) ? s.closestNear(tip_local, hint) : s.closest(tip_local);
+    const BoundaryPoint bp = s.boundary(cp.xi);
+    c.xi = cp.xi;
+    data.xi_hint[i] = cp.xi;
+    c.gap = cp.signed_distance;
+    c.lever = rotate(phi, bp.point);
+    c.point = x_o + c.lever;
+    c.normal = rotate(phi, bp.normal);
+    c.tangent = rotate(phi, bp.tangent);
+    c.curvature = bp.curvature;
+
+    Vec2 d_theta, d_stroke;
+    fingertipJacobian(q, i, d_theta, d_stroke);
+    // The gap grows when the object moves along n (the tip recedes inside the normal
+    // direction) and shrinks when the tip moves along n: G1_i = [G_i n_i; -J_i^T n_i].
+    data.G1.col(i).head<2>() = c.normal;
+    data.G1(kPhi, i) = cross(c.lever, c.normal);
+    data.G1(kTheta, i) = -d_theta.dot(c.normal);
+    data.G1(stroke(i), i) = -d_stroke.dot(c.normal);
+    data.T.col(i).head<2>() = c.tangent;
+    data.T(kPhi, i) = cross(c.lever, c.tangent);
+    data.T(kTheta, i) = -d_theta.dot(c.tangent);
+    data.T(stroke(i), i) = -d_stroke.dot(c.tangent);
+  }
+}
+
+void RbsfModel::velocityProducts(const VecQ& q, const VecQ& v, ModelData& data) const {
+  const double theta = q[kTheta];
+  const double theta_dot = v[kTheta];
+  const double omega = v[kPhi];
+  const Vec2 x_dot(v[kX], v[kY]);
+  const Vec2 axis(-std::sin(theta), std::cos(theta));  // R(theta) (0, 1)
+  for (int i = 0; i < m_; ++i) {
+    const ContactFrame& c = data.contacts[i];
+    const double l_dot = v[stroke(i)];
+    const Vec2 tip_dot = theta_dot * perp(c.tip) + l_dot * axis;
+    const Vec2 rel = tip_dot - x_dot;                      // dp_i/dt - dx_o/dt
+    const Vec2 w = rel - omega * perp(c.lever);            // slip of the tip over the object
+    const Vec2 jdot = -theta_dot * theta_dot * c.tip + 2.0 * theta_dot * l_dot * perp(axis);
+    const double wt = c.tangent.dot(w);
+    const double wn = c.normal.dot(w);
+    data.h_n[i] = omega * wt + c.curvature * wt * wt - c.normal.dot(jdot) + omega * c.tangent.dot(rel);
+    data.h_t[i] = -(omega + c.curvature * wt) * wn - c.tangent.dot(jdot) - omega * c.normal.dot(rel);
+  }
+}
+
+void RbsfModel::massMatrix(const VecQ& q, MatQQ& M) const {
+  M.setZero(m_ + 4, m_ + 4);
+  M(kX, kX) = cell_.object.mass;
+  M(kY, kY) = cell_.object.mass;
+  M(kPhi, kPhi) = cell_.object.inertia;
+  double base = cell_.base.inertia;
+  for (int i = 0; i < m_; ++i) {
+    const FingerParams& f = cell_.fingers[i];
+    const double L = q[stroke(i)] + f.com_offset;
+    base += f.inertia + f.mass * (f.r * f.r + L * L);
+    M(kTheta, stroke(i)) = M(stroke(i), kTheta) = f.mass * f.r;
+    M(stroke(i), stroke(i)) = f.mass;
+  }
+  M(kTheta, kTheta) = base;
+}
+
+void RbsfModel::bias(const VecQ& q, const VecQ& v, VecQ& Q) const {
+  const double g0 = cell_.gravity;
+  const double ct = std::cos(q[kTheta]), st = std::sin(q[kTheta]);
+  const double theta_dot = v[kTheta];
+  Q.setZero(m_ + 4);
+  Q[kY] = cell_.object.mass * g0;
+  double q_theta = 0.0;
+  for (int i = 0; i < m_; ++i) {
+    const FingerParams& f = cell_.fingers[i];
+    const double L = q[stroke(i)] + f.com_offset;
+    q_theta += 2.0 * f.mass * L * v[stroke(i)] * theta_dot + f.mass * g0 * (f.r * ct - L * st);
+    Q[stroke(i)] = -f.mass * L * theta_dot * theta_dot + f.mass * g0 * ct;
+  }
+  Q[kTheta] = q_theta;
+}
+
+void RbsfModel::generalizedInput(const VecU& tau, VecQ& u) const {
+  u.setZero(m_ + 4);
+  for (int j = 0; j < m_ + 1; ++j) u[layout::inputToConfig(j)] = tau[j];
+}
+
+double RbsfModel::kineticEnergy(const VecQ& q, const VecQ& v) const {
+  MatQQ M;
+  massMatrix(q, M);
+  return 0.5 * v.dot(M * v);
+}
+
+double RbsfModel::potentialEnergy(const VecQ& q) const {
+  const double g0 = cell_.gravity;
+  const double ct = std::cos(q[kTheta]), st = std::sin(q[kTheta]);
+  double V = cell_.object.mass * g0 * q[kY];
+  for (int i = 0; i < m_; ++i) {
+    const FingerParams& f = cell_.fingers[i];
+    V += f.mass * g0 * (f.r * st + (q[stroke(i)] + f.com_offset) * ct);
+  }
+  return V;
+}
+
+}  // namespace rbsf
