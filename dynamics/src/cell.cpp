@@ -63,12 +63,7 @@ struct Checker {
 };
 
 /// Structural reading of YAML nodes; messages "<label>: <path> ...".
-class Reader {
- public:
-  explicit Reader(const std::string& label) : prefix_(prefixOf(label)) {}
-
-  [[noreturn]] void fail(const std::string& msg) const { throw InputError(prefix_ + msg); }
-
+struct Reader : Checker {
   static std::string join(const std::string& path, const std::string& key) {
     return path.empty() ? key : path + "." + key;
   }
@@ -137,15 +132,15 @@ class Reader {
     if (!n.IsDefined()) return {0.0, 0.0};
     if (!n.IsSequence() || n.size() != 2)
       fail(p + " must be a list of 2 numbers (got " +
-           (n.IsSequence() ? std::to_string(n.size()) + " entries" : describe(n)) + ")");
+           (!n.IsSequence() ? describe(n)
+            : n.size() == 1 ? std::string("1 entry")
+                            : std::to_string(n.size()) + " entries") +
+           ")");
     return {number(n[0], p + "[0]"), number(n[1], p + "[1]")};
   }
-
- private:
-  std::string prefix_;
 };
 
-std::shared_ptr<const Shape> readShape(const Reader& rd, const Checker& chk, const YAML::Node& n) {
+std::shared_ptr<const Shape> readShape(const Reader& rd, const YAML::Node& n) {
   const std::string path = "object.shape";
   if (!n.IsMap()) rd.fail(path + " must be a mapping (got " + Reader::describe(n) + ")");
   const YAML::Node t = rd.get(n, path, "type");
@@ -156,12 +151,12 @@ std::shared_ptr<const Shape> readShape(const Reader& rd, const Checker& chk, con
     try {
       return make();
     } catch (const InputError& e) {
-      chk.fail(path + ": " + e.what());
+      rd.fail(path + ": " + e.what());
     }
   };
   auto positive = [&](const char* key) {
     const double v = rd.number(n, path, key);
-    chk.positive(v, Reader::join(path, key));
+    rd.positive(v, Reader::join(path, key));
     return v;
   };
   if (type == "ellipse") {
@@ -180,7 +175,7 @@ std::shared_ptr<const Shape> readShape(const Reader& rd, const Checker& chk, con
     rd.mapping(n, path, {"type", "a", "b", "exponent", "center"});
     const double a = positive("a"), b = positive("b");
     const double e = rd.number(n, path, "exponent");
-    if (e < 2 || e > 20) chk.fail(path + ".exponent must lie in [2, 20] (got " + fmt(e) + ")");
+    if (e < 2 || e > 20) rd.fail(path + ".exponent must lie in [2, 20] (got " + fmt(e) + ")");
     const auto [cx, cy] = rd.pair(n, path, "center", false);
     return build([&] { return std::make_shared<SuperellipseShape>(a, b, e, Vec2(cx, cy)); });
   }
@@ -214,6 +209,14 @@ void Cell::validate() const {
     c.nonNegative(f.inertia, p + "inertia");
   }
   if (!object.shape) c.fail("object.shape is missing");
+  // A body's COM lies inside its convex hull: the origin must be left of every tangent
+  // line (by more than 1 nm, so a COM on the boundary is rejected too).
+  for (int k = 0; k < 256; ++k) {
+    Vec2 p, dp, ddp;
+    object.shape->derivatives(2 * M_PI * k / 256, p, dp, ddp);
+    if (!(cross(p, dp) > 1e-9 * dp.norm()))
+      c.fail("object.shape.center puts the COM (the object-frame origin) outside the shape");
+  }
   c.positive(object.mass, "object.mass");
   c.positive(object.inertia, "object.inertia");
   c.nonNegative(friction.mu_static, "friction.static");
@@ -224,8 +227,7 @@ void Cell::validate() const {
 }
 
 Cell parseCell(const std::string& yaml_text, const std::string& label) {
-  const Reader rd(label);
-  const Checker chk{prefixOf(label)};
+  const Reader rd{{prefixOf(label)}};
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
@@ -265,7 +267,7 @@ Cell parseCell(const std::string& yaml_text, const std::string& label) {
 
   const YAML::Node object = rd.get(root, "", "object");
   rd.mapping(object, "object", {"shape", "mass", "inertia"});
-  cell.object.shape = readShape(rd, chk, rd.get(object, "object", "shape"));
+  cell.object.shape = readShape(rd, rd.get(object, "object", "shape"));
   cell.object.mass = rd.number(object, "object", "mass");
   cell.object.inertia = rd.number(object, "object", "inertia");
 

@@ -151,6 +151,30 @@ TEST(CellLoader, HeavyCellHasTheFileValues) {
   EXPECT_DOUBLE_EQ(c.object.inertia, 3.098);
 }
 
+/// Lowest boundary point of `shape` (object frame) at abscissa x: its height and inward
+/// normal. Uses only c(xi) (dense sampling, linear interpolation), so it does not depend
+/// on the shape's closest-point or line-entry queries. False when x misses the shape.
+bool underside(const Shape& shape, double x, double& y, Vec2& normal) {
+  constexpr int kN = 20000;
+  bool hit = false;
+  Vec2 prev = shape.point(0.0);
+  for (int k = 1; k <= kN; ++k) {
+    const double xi = 2 * M_PI * k / kN;
+    const Vec2 cur = shape.point(xi);
+    if ((prev.x() - x) * (cur.x() - x) <= 0 && prev.x() != cur.x()) {
+      const double t = (x - prev.x()) / (cur.x() - prev.x());
+      const double yy = prev.y() + t * (cur.y() - prev.y());
+      if (!hit || yy < y) {
+        y = yy;
+        normal = shape.boundary(xi - (1 - t) * 2 * M_PI / kN).normal;
+      }
+      hit = true;
+    }
+    prev = cur;
+  }
+  return hit;
+}
+
 /// Every cell in cells/ loads, and is physically plausible: at theta = 0 there is an
 /// object position (phi = 0) where every fingertip touches the underside of the part
 /// within its stroke, with the COM between the outer fingers and no contact normal
@@ -164,24 +188,21 @@ TEST(CellLoader, EveryExampleCellLoadsAndCanRestOnItsFingers) {
     SCOPED_TRACE(entry.path().string());
     Cell c;
     ASSERT_NO_THROW(c = loadCell(entry.path().string()));
-    const Shape& shape = *c.object.shape;
     const int m = c.numFingers();
     double r_min = 1e9, r_max = -1e9;
     for (const auto& f : c.fingers) r_min = std::min(r_min, f.r), r_max = std::max(r_max, f.r);
     bool found = false;
     for (double x = -0.15; x <= 0.15 + 1e-12 && !found; x += 0.005) {
       if (x <= r_min || x >= r_max) continue;  // COM above the support
-      // The COM sits at (x, y); the object-frame contact height of finger i is yc[i].
+      // The COM sits at (x, y); finger i touches at object-frame height yc[i]: l_i = y + yc[i].
+      std::vector<double> yc(m);
       double lo = -1e9, hi = 1e9;
       bool ok = true;
       for (int i = 0; i < m && ok; ++i) {
-        double s = 0, xi = 0;
-        const Vec2 origin(c.fingers[i].r - x, -10.0);
-        ok = shape.entryAlongLine(origin, Vec2(0, 1), s, xi) &&
-             shape.boundary(xi).normal.y() > 0.5;  // inward normal points up, <= 60 deg
-        const double yc = origin.y() + s;          // l_i = y + yc
-        lo = std::max(lo, c.fingers[i].stroke_min - yc);
-        hi = std::min(hi, c.fingers[i].stroke_max - yc);
+        Vec2 n = Vec2::Zero();
+        ok = underside(*c.object.shape, c.fingers[i].r - x, yc[i], n) && n.y() > 0.5;
+        lo = std::max(lo, c.fingers[i].stroke_min - yc[i]);
+        hi = std::min(hi, c.fingers[i].stroke_max - yc[i]);
       }
       if (!ok || lo > hi) continue;
       found = true;
@@ -195,10 +216,7 @@ TEST(CellLoader, EveryExampleCellLoadsAndCanRestOnItsFingers) {
       for (double th : {c.base.theta_min, c.base.theta_max}) {
         double torque = c.object.mass * c.gravity * rotate(th, Vec2(x, y)).x();
         for (int i = 0; i < m; ++i) {
-          double s = 0, xi = 0;
-          shape.entryAlongLine(Vec2(c.fingers[i].r - x, -10.0), Vec2(0, 1), s, xi);
-          const double l = y - 10.0 + s;
-          const Vec2 com(c.fingers[i].r, l + c.fingers[i].com_offset);
+          const Vec2 com(c.fingers[i].r, y + yc[i] + c.fingers[i].com_offset);
           torque += c.fingers[i].mass * c.gravity * rotate(th, com).x();
         }
         EXPECT_LE(1.5 * std::abs(torque), c.base.torque_limit) << "theta " << th;
@@ -238,16 +256,17 @@ TEST(CellLoader, OptionalKeysTakeTheirDefaults) {
 TEST(CellLoader, ExplicitOptionalKeysAreRead) {
   const Cell c = parseCell(with("gravity: 9.81", "gravity: 0"));
   EXPECT_DOUBLE_EQ(c.gravity, 0.0);  // zero gravity is allowed
-  const Cell d = parseCell(with("mass: 2.0, force_limit: 600.0}",
-                                "mass: 2.0, force_limit: 600.0, com_offset: -0.03, inertia: 0.01}"));
+  const Cell d =
+      parseCell(with("mass: 2.0, force_limit: 600.0}",
+                     "mass: 2.0, force_limit: 600.0, com_offset: -0.03, inertia: 0.01}"));
   EXPECT_DOUBLE_EQ(d.fingers[0].com_offset, -0.03);
   EXPECT_DOUBLE_EQ(d.fingers[0].inertia, 0.01);
   EXPECT_DOUBLE_EQ(d.fingers[1].com_offset, 0.0);
   const Cell e = parseCell(with("kinetic: 0.0", "kinetic: 0.5"));  // mu_k == mu_s is allowed
   EXPECT_DOUBLE_EQ(e.friction.mu_kinetic, 0.5);
-  const Cell s = parseCell(
-      with("{type: ellipse, a: 0.3, b: 0.15, center: [-0.1, 0.0]}",
-           "{type: superellipse, a: 0.3, b: 0.15, exponent: 6, center: [0.01, -0.02]}"));
+  const Cell s =
+      parseCell(with("{type: ellipse, a: 0.3, b: 0.15, center: [-0.1, 0.0]}",
+                     "{type: superellipse, a: 0.3, b: 0.15, exponent: 6, center: [0.01, -0.02]}"));
   const auto* se = dynamic_cast<const SuperellipseShape*>(s.object.shape.get());
   ASSERT_NE(se, nullptr);
   EXPECT_DOUBLE_EQ(se->exponent(), 6.0);
@@ -276,103 +295,152 @@ std::vector<BadCase> badCases() {
   const std::string f1 = "{r: 0.0, stroke: [0.05, 0.45], mass: 2.0, force_limit: 600.0}";
   return {
       {"MissingObjectInertia", with("  inertia: 0.5625\n", ""), {"missing key object.inertia"}},
-      {"MissingBaseTorqueLimit", with("  torque_limit: 300.0\n", ""),
+      {"MissingBaseTorqueLimit",
+       with("  torque_limit: 300.0\n", ""),
        {"missing key base.torque_limit"}},
       {"MissingShape", with("  shape: " + ell + "\n", ""), {"missing key object.shape"}},
-      {"MissingFriction", with("friction: {static: 0.5, kinetic: 0.0}\n", ""),
+      {"MissingFriction",
+       with("friction: {static: 0.5, kinetic: 0.0}\n", ""),
        {"missing key friction"}},
-      {"MissingStatic", with("{static: 0.5, kinetic: 0.0}", "{kinetic: 0.0}"),
+      {"MissingStatic",
+       with("{static: 0.5, kinetic: 0.0}", "{kinetic: 0.0}"),
        {"missing key friction.static"}},
-      {"MissingFingerStroke", with("r: 0.0, stroke: [0.05, 0.45], ", "r: 0.0, "),
+      {"MissingFingerStroke",
+       with("r: 0.0, stroke: [0.05, 0.45], ", "r: 0.0, "),
        {"missing key fingers[1].stroke"}},
-      {"NegativeFingerMass", with(f1, "{r: 0.0, stroke: [0.05, 0.45], mass: -2, force_limit: 600}"),
+      {"NegativeFingerMass",
+       with(f1, "{r: 0.0, stroke: [0.05, 0.45], mass: -2, force_limit: 600}"),
        {"cells/x.yaml: fingers[1].mass must be positive (got -2)"}},
       {"ZeroObjectMass", with("mass: 20.0", "mass: 0"), {"object.mass must be positive (got 0)"}},
-      {"NegativeObjectInertia", with("inertia: 0.5625", "inertia: -1"),
+      {"NegativeObjectInertia",
+       with("inertia: 0.5625", "inertia: -1"),
        {"object.inertia must be positive (got -1)"}},
-      {"ZeroObjectInertia", with("inertia: 0.5625", "inertia: 0.0"),
+      {"ZeroObjectInertia",
+       with("inertia: 0.5625", "inertia: 0.0"),
        {"object.inertia must be positive"}},
-      {"NegativeBaseInertia", with("inertia: 5.0", "inertia: -0.5"),
+      {"NegativeBaseInertia",
+       with("inertia: 5.0", "inertia: -0.5"),
        {"base.inertia must not be negative (got -0.5)"}},
       {"NegativeFingerInertia",
        with("mass: 2.0, force_limit: 600.0}", "mass: 2.0, force_limit: 600.0, inertia: -0.1}"),
        {"fingers[0].inertia must not be negative (got -0.1)"}},
-      {"ThetaLimitsTooShort", with("[-0.7, 0.7]", "[-0.7]"),
-       {"base.theta_limits must be a list of 2 numbers", "got 1 entries"}},
-      {"ThetaLimitsScalar", with("[-0.7, 0.7]", "0.7"),
+      {"ThetaLimitsTooShort",
+       with("[-0.7, 0.7]", "[-0.7]"),
+       {"base.theta_limits must be a list of 2 numbers", "(got 1 entry)"}},
+      {"ThetaLimitsScalar",
+       with("[-0.7, 0.7]", "0.7"),
        {"base.theta_limits must be a list of 2 numbers (got '0.7')"}},
-      {"ThetaLimitsMapping", with("[-0.7, 0.7]", "{lo: -1, hi: 1}"),
+      {"ThetaLimitsMapping",
+       with("[-0.7, 0.7]", "{lo: -1, hi: 1}"),
        {"base.theta_limits must be a list of 2 numbers (got a mapping)"}},
-      {"ThetaLimitsReversed", with("[-0.7, 0.7]", "[0.7, -0.7]"),
+      {"ThetaLimitsReversed",
+       with("[-0.7, 0.7]", "[0.7, -0.7]"),
        {"base.theta_limits must be [lo, hi] with lo < hi (got [0.7, -0.7])"}},
       {"ThetaLimitsEqual", with("[-0.7, 0.7]", "[0.7, 0.7]"), {"base.theta_limits", "lo < hi"}},
-      {"ThetaLimitsInDegrees", with("[-0.7, 0.7]", "[-45, 45]"),
+      {"ThetaLimitsInDegrees",
+       with("[-0.7, 0.7]", "[-45, 45]"),
        {"base.theta_limits must lie within [-pi, pi] radians"}},
-      {"StrokeReversed", with("{r: 0.2, stroke: [0.05, 0.45]", "{r: 0.2, stroke: [0.45, 0.05]"),
+      {"StrokeReversed",
+       with("{r: 0.2, stroke: [0.05, 0.45]", "{r: 0.2, stroke: [0.45, 0.05]"),
        {"fingers[2].stroke must be [lo, hi] with lo < hi"}},
-      {"StrokeEntryNotNumber", with("stroke: [0.05, 0.45]", "stroke: [0.05, high]"),
+      {"StrokeEntryNotNumber",
+       with("stroke: [0.05, 0.45]", "stroke: [0.05, high]"),
        {"fingers[0].stroke[1] must be a number (got 'high')"}},
-      {"ZeroTorqueLimit", with("torque_limit: 300.0", "torque_limit: 0"),
+      {"ZeroTorqueLimit",
+       with("torque_limit: 300.0", "torque_limit: 0"),
        {"base.torque_limit must be positive (got 0)"}},
-      {"NegativeForceLimit", with("force_limit: 600.0", "force_limit: -5"),
+      {"NegativeForceLimit",
+       with("force_limit: 600.0", "force_limit: -5"),
        {"fingers[0].force_limit must be positive (got -5)"}},
-      {"NegativeStatic", with("static: 0.5", "static: -0.1"),
+      {"NegativeStatic",
+       with("static: 0.5", "static: -0.1"),
        {"friction.static must not be negative (got -0.1)"}},
-      {"NegativeKinetic", with("kinetic: 0.0", "kinetic: -0.1"),
+      {"NegativeKinetic",
+       with("kinetic: 0.0", "kinetic: -0.1"),
        {"friction.kinetic must not be negative"}},
-      {"KineticAboveStatic", with("kinetic: 0.0", "kinetic: 0.6"),
+      {"KineticAboveStatic",
+       with("kinetic: 0.0", "kinetic: 0.6"),
        {"friction.kinetic (0.6) must not exceed friction.static (0.5)"}},
-      {"NegativeGravity", with("gravity: 9.81", "gravity: -9.81"),
+      {"NegativeGravity",
+       with("gravity: 9.81", "gravity: -9.81"),
        {"gravity must not be negative (got -9.81)"}},
-      {"InfiniteGravity", with("gravity: 9.81", "gravity: .inf"),
+      {"InfiniteGravity",
+       with("gravity: 9.81", "gravity: .inf"),
        {"gravity must be a finite number (got '.inf')"}},
       {"NanMass", with("mass: 20.0", "mass: .nan"), {"object.mass must be a finite number"}},
-      {"OverflowingNumber", with("torque_limit: 300.0", "torque_limit: 1e999"),
+      {"OverflowingNumber",
+       with("torque_limit: 300.0", "torque_limit: 1e999"),
        {"base.torque_limit must be a number (got '1e999')"}},
-      {"NonNumericMass", with("mass: 20.0", "mass: abc"),
+      {"NonNumericMass",
+       with("mass: 20.0", "mass: abc"),
        {"object.mass must be a number (got 'abc')"}},
-      {"NumberWithUnit", with("mass: 20.0", "mass: 20kg"),
+      {"NumberWithUnit",
+       with("mass: 20.0", "mass: 20kg"),
        {"object.mass must be a number (got '20kg')"}},
       {"BooleanMass", with("mass: 20.0", "mass: true"), {"object.mass must be a number"}},
-      {"EmptyMass", with("mass: 20.0", "mass:"),
+      {"EmptyMass",
+       with("mass: 20.0", "mass:"),
        {"object.mass must be a number (got an empty value)"}},
       {"ListMass", with("mass: 20.0", "mass: [20]"), {"object.mass must be a number (got a list)"}},
-      {"UnknownShapeType", with("type: ellipse", "type: hexagon"),
+      {"UnknownShapeType",
+       with("type: ellipse", "type: hexagon"),
        {"cells/x.yaml: object.shape.type 'hexagon' is unknown (expected ellipse, circle or "
         "superellipse)"}},
-      {"ShapeTypeNotAName", with("type: ellipse", "type: [ellipse]"),
+      {"ShapeTypeNotAName",
+       with("type: ellipse", "type: [ellipse]"),
        {"object.shape.type must be a name"}},
-      {"NegativeSemiAxis", with("a: 0.3", "a: -0.3"),
+      {"NegativeSemiAxis",
+       with("a: 0.3", "a: -0.3"),
        {"object.shape.a must be positive (got -0.3)"}},
-      {"ZeroRadius", with(ell, "{type: circle, radius: 0}"),
+      {"ZeroRadius",
+       with(ell, "{type: circle, radius: 0}"),
        {"object.shape.radius must be positive (got 0)"}},
       {"MissingRadius", with(ell, "{type: circle}"), {"missing key object.shape.radius"}},
-      {"ExponentTooSmall", with(ell, "{type: superellipse, a: 0.3, b: 0.15, exponent: 1.5}"),
+      {"ExponentTooSmall",
+       with(ell, "{type: superellipse, a: 0.3, b: 0.15, exponent: 1.5}"),
        {"object.shape.exponent must lie in [2, 20] (got 1.5)"}},
-      {"ExponentTooLarge", with(ell, "{type: superellipse, a: 0.3, b: 0.15, exponent: 25}"),
+      {"ExponentTooLarge",
+       with(ell, "{type: superellipse, a: 0.3, b: 0.15, exponent: 25}"),
        {"object.shape.exponent must lie in [2, 20] (got 25)"}},
-      {"MissingExponent", with(ell, "{type: superellipse, a: 0.3, b: 0.15}"),
+      {"MissingExponent",
+       with(ell, "{type: superellipse, a: 0.3, b: 0.15}"),
        {"missing key object.shape.exponent"}},
-      {"CenterWrongLength", with("center: [-0.1, 0.0]", "center: [-0.1]"),
+      {"CenterWrongLength",
+       with("center: [-0.1, 0.0]", "center: [-0.1]"),
        {"object.shape.center must be a list of 2 numbers"}},
-      {"CenterNotNumber", with("center: [-0.1, 0.0]", "center: [left, 0.0]"),
+      {"ComOutsideEllipse",
+       with("center: [-0.1, 0.0]", "center: [-0.1, 0.2]"),
+       {"object.shape.center puts the COM (the object-frame origin) outside the shape"}},
+      {"ComOnCircle",
+       with(ell, "{type: circle, radius: 0.1, center: [0.1, 0]}"),
+       {"object.shape.center puts the COM"}},
+      {"ComOutsideSuperellipse",
+       with(ell, "{type: superellipse, a: 0.3, b: 0.15, exponent: 4, center: [0.29, 0.149]}"),
+       {"object.shape.center puts the COM"}},
+      {"CenterNotNumber",
+       with("center: [-0.1, 0.0]", "center: [left, 0.0]"),
        {"object.shape.center[0] must be a number (got 'left')"}},
-      {"KeyOfAnotherShape", with("a: 0.3, b: 0.15,", "a: 0.3, b: 0.15, radius: 0.2,"),
+      {"KeyOfAnotherShape",
+       with("a: 0.3, b: 0.15,", "a: 0.3, b: 0.15, radius: 0.2,"),
        {"unknown key object.shape.radius"}},
       {"UnknownTopLevelKey", with("gravity: 9.81", "gravty: 9.81"), {"unknown key gravty"}},
-      {"UnknownFingerKey", with("mass: 2.0, force_limit", "masss: 2.0, force_limit"),
+      {"UnknownFingerKey",
+       with("mass: 2.0, force_limit", "masss: 2.0, force_limit"),
        {"unknown key fingers[0].masss"}},
-      {"UnknownBaseKey", with("  inertia: 5.0\n", "  inertia: 5.0\n  torque_lim: 3\n"),
+      {"UnknownBaseKey",
+       with("  inertia: 5.0\n", "  inertia: 5.0\n  torque_lim: 3\n"),
        {"unknown key base.torque_lim"}},
-      {"UnknownFrictionKey", with("kinetic: 0.0", "kinetic: 0.0, dynamic: 0.1"),
+      {"UnknownFrictionKey",
+       with("kinetic: 0.0", "kinetic: 0.0, dynamic: 0.1"),
        {"unknown key friction.dynamic"}},
-      {"DuplicateKey", with("  mass: 20.0\n", "  mass: 20.0\n  mass: 2000.0\n"),
+      {"DuplicateKey",
+       with("  mass: 20.0\n", "  mass: 20.0\n  mass: 2000.0\n"),
        {"duplicate key object.mass"}},
       {"ZeroFingers", with(kFingers, "  []\n"), {"fingers must list at least one finger"}},
-      {"TooManyFingers", thirteenFingers(),
-       {"fingers lists 13 fingers; at most 12 are supported"}},
+      {"TooManyFingers", thirteenFingers(), {"fingers lists 13 fingers; at most 12 are supported"}},
       {"FingersNotAList", with(kFingers, "  {r: 0}\n"), {"fingers must be a list of fingers"}},
-      {"FingerNotAMapping", with(kFingers, "  - 0.2\n"),
+      {"FingerNotAMapping",
+       with(kFingers, "  - 0.2\n"),
        {"fingers[0] must be a mapping (got '0.2')"}},
       {"BaseNotAMapping",
        with("base:\n  inertia: 5.0\n  theta_limits: [-0.7, 0.7]\n  torque_limit: 300.0\n",
@@ -425,9 +493,8 @@ TEST(CellLoader, DirectoryIsRejected) {
 
 TEST(CellLoader, FileErrorsCarryThePathAsLabel) {
   const auto path = std::filesystem::temp_directory_path() /
-                    ("rbsf_cell_loader_test_" + std::to_string(::testing::UnitTest::GetInstance()
-                                                                   ->random_seed()) +
-                     ".yaml");
+                    ("rbsf_cell_loader_test_" +
+                     std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + ".yaml");
   {
     std::ofstream out(path);
     out << with("mass: 20.0", "mass: -3");
@@ -500,9 +567,12 @@ TEST(CellValidate, ChecksEveryInvariant) {
       {[](Cell& c) { c.fingers[1].r = NAN; }, "fingers[1].r must be a finite number"},
       {[](Cell& c) { c.fingers[1].stroke_max = -1; }, "fingers[1].stroke must be [lo, hi]"},
       {[](Cell& c) { c.fingers[1].force_limit = -1; }, "fingers[1].force_limit must be positive"},
-      {[](Cell& c) { c.fingers[1].com_offset = INFINITY; }, "fingers[1].com_offset must be a finite"},
+      {[](Cell& c) { c.fingers[1].com_offset = INFINITY; },
+       "fingers[1].com_offset must be a finite"},
       {[](Cell& c) { c.fingers[1].inertia = -1; }, "fingers[1].inertia must not be negative"},
       {[](Cell& c) { c.object.shape.reset(); }, "object.shape is missing"},
+      {[](Cell& c) { c.object.shape = std::make_shared<CircleShape>(0.1, Vec2(0.0, -0.2)); },
+       "object.shape.center puts the COM (the object-frame origin) outside the shape"},
       {[](Cell& c) { c.object.mass = 0; }, "object.mass must be positive (got 0)"},
       {[](Cell& c) { c.object.inertia = NAN; }, "object.inertia must be a finite number"},
       {[](Cell& c) { c.friction.mu_static = -0.5; }, "friction.static must not be negative"},

@@ -101,21 +101,32 @@ std::string entryWhat(std::string_view what, std::size_t i, std::string_view nam
 
 /// Name of configuration (or velocity) entry i for m fingers, e.g. "phi", "l2", "dtheta".
 std::string entryName(int i, bool velocity) {
-  std::string name;
+  std::string name = velocity ? "d" : "";
   switch (i) {
-    case layout::kX: name = "x"; break;
-    case layout::kY: name = "y"; break;
-    case layout::kPhi: name = "phi"; break;
-    case layout::kTheta: name = "theta"; break;
-    default: name = "l" + std::to_string(i - layout::kFirstStroke + 1); break;
+    case layout::kX:
+      name += "x";
+      break;
+    case layout::kY:
+      name += "y";
+      break;
+    case layout::kPhi:
+      name += "phi";
+      break;
+    case layout::kTheta:
+      name += "theta";
+      break;
+    default:
+      name += "l";
+      name += std::to_string(i - layout::kFirstStroke + 1);
+      break;
   }
-  return velocity ? "d" + name : name;
+  return name;
 }
 
 VecQ parseState(std::string_view text, std::string_view what, int m, bool velocity) {
   if (m < 1 || m > kMaxFingers)
-    fail(what, "finger count " + std::to_string(m) + " is outside 1.." +
-                   std::to_string(kMaxFingers));
+    fail(what,
+         "finger count " + std::to_string(m) + " is outside 1.." + std::to_string(kMaxFingers));
   const int n = layout::configDim(m);
   const auto tokens = split(text, what, static_cast<std::size_t>(n), configLayout(m, velocity));
   VecQ q(n);
