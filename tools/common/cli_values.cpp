@@ -99,7 +99,7 @@ std::string entryWhat(std::string_view what, std::size_t i, std::string_view nam
          (name.empty() ? "" : " (" + std::string(name) + ")");
 }
 
-/// Name of configuration (or velocity) entry i for m fingers, e.g. "phi", "l2", "dtheta".
+/// Name of configuration (or velocity) entry i, e.g. "phi", "l2", "dtheta".
 std::string entryName(int i, bool velocity) {
   std::string name = velocity ? "d" : "";
   switch (i) {
