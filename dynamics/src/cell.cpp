@@ -1,0 +1,295 @@
+/// \file
+/// \brief Cell validation and the YAML cell loader (MODEL.md "Files").
+///
+/// The parser checks structure (known keys, types, finite numbers) and builds a Cell;
+/// every range check lives in Cell::validate(), so a cell from a file and one built in
+/// code are held to the same rules and get the same messages (key paths as in a file).
+
+#include "rbsf/dynamics/cell.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <set>
+#include <sstream>
+#include <string_view>
+#include <tuple>
+
+#include <yaml-cpp/yaml.h>
+
+#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/types.h"
+
+namespace rbsf {
+namespace {
+
+/// Shortest round-trip text of a number ("-2", "0.1", "nan").
+std::string fmt(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[32];
+  auto res = std::to_chars(buf, buf + sizeof(buf), v);
+  return std::string(buf, res.ptr);
+}
+
+std::string prefixOf(const std::string& label) { return label.empty() ? "" : label + ": "; }
+
+/// Range checks with messages "<label>: <path> must be ... (got v)".
+struct Checker {
+  std::string prefix;
+
+  [[noreturn]] void fail(const std::string& msg) const { throw InputError(prefix + msg); }
+  void finite(double v, const std::string& path) const {
+    if (!std::isfinite(v)) fail(path + " must be a finite number (got " + fmt(v) + ")");
+  }
+  void positive(double v, const std::string& path) const {
+    finite(v, path);
+    if (!(v > 0)) fail(path + " must be positive (got " + fmt(v) + ")");
+  }
+  void nonNegative(double v, const std::string& path) const {
+    finite(v, path);
+    if (v < 0) fail(path + " must not be negative (got " + fmt(v) + ")");
+  }
+  void interval(double lo, double hi, const std::string& path) const {
+    finite(lo, path + "[0]");
+    finite(hi, path + "[1]");
+    if (!(lo < hi))
+      fail(path + " must be [lo, hi] with lo < hi (got [" + fmt(lo) + ", " + fmt(hi) + "])");
+  }
+};
+
+/// Structural reading of YAML nodes; messages "<label>: <path> ...".
+struct Reader : Checker {
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+
+  static std::string describe(const YAML::Node& n) {
+    if (n.IsNull()) return "an empty value";
+    if (n.IsSequence()) return "a list";
+    if (n.IsMap()) return "a mapping";
+    return "'" + n.Scalar() + "'";
+  }
+
+  /// Requires `n` to be a mapping whose keys are unique and all in `allowed`.
+  void mapping(const YAML::Node& n, const std::string& path,
+               std::initializer_list<std::string_view> allowed) const {
+    const std::string what = path.empty() ? "the cell" : path;
+    if (!n.IsMap()) fail(what + " must be a mapping (got " + describe(n) + ")");
+    std::set<std::string> seen;
+    for (const auto& kv : n) {
+      if (!kv.first.IsScalar()) fail(what + " has a key that is not a plain name");
+      const std::string key = kv.first.Scalar();
+      if (!seen.insert(key).second) fail("duplicate key " + join(path, key));
+      bool ok = false;
+      std::string list;
+      for (auto a : allowed) {
+        ok = ok || key == a;
+        list += (list.empty() ? "" : ", ") + std::string(a);
+      }
+      if (!ok) fail("unknown key " + join(path, key) + " (expected one of: " + list + ")");
+    }
+  }
+
+  /// The value at map[key]; fails when missing and required.
+  YAML::Node get(const YAML::Node& map, const std::string& path, const char* key,
+                 bool required = true) const {
+    YAML::Node n = map[key];
+    if (!n.IsDefined() && required) fail("missing key " + join(path, key));
+    return n;
+  }
+
+  double number(const YAML::Node& n, const std::string& path) const {
+    double v = 0;
+    bool ok = false;
+    if (n.IsScalar()) {
+      try {
+        v = n.as<double>();
+        ok = true;
+      } catch (const YAML::Exception&) {
+      }
+    }
+    if (!ok) fail(path + " must be a number (got " + describe(n) + ")");
+    if (!std::isfinite(v)) fail(path + " must be a finite number (got " + describe(n) + ")");
+    return v;
+  }
+
+  double number(const YAML::Node& map, const std::string& path, const char* key,
+                double fallback = 0, bool required = true) const {
+    YAML::Node n = get(map, path, key, required);
+    return n.IsDefined() ? number(n, join(path, key)) : fallback;
+  }
+
+  /// A list of exactly two numbers.
+  std::pair<double, double> pair(const YAML::Node& map, const std::string& path, const char* key,
+                                 bool required = true) const {
+    const std::string p = join(path, key);
+    YAML::Node n = get(map, path, key, required);
+    if (!n.IsDefined()) return {0.0, 0.0};
+    if (!n.IsSequence() || n.size() != 2)
+      fail(p + " must be a list of 2 numbers (got " +
+           (!n.IsSequence() ? describe(n)
+            : n.size() == 1 ? std::string("1 entry")
+                            : std::to_string(n.size()) + " entries") +
+           ")");
+    return {number(n[0], p + "[0]"), number(n[1], p + "[1]")};
+  }
+};
+
+std::shared_ptr<const Shape> readShape(const Reader& rd, const YAML::Node& n) {
+  const std::string path = "object.shape";
+  if (!n.IsMap()) rd.fail(path + " must be a mapping (got " + Reader::describe(n) + ")");
+  const YAML::Node t = rd.get(n, path, "type");
+  if (!t.IsScalar()) rd.fail(path + ".type must be a name (got " + Reader::describe(t) + ")");
+  const std::string type = t.Scalar();
+  // The shape constructors check their arguments too; name the key path if they object.
+  auto build = [&](auto make) -> std::shared_ptr<const Shape> {
+    try {
+      return make();
+    } catch (const InputError& e) {
+      rd.fail(path + ": " + e.what());
+    }
+  };
+  auto positive = [&](const char* key) {
+    const double v = rd.number(n, path, key);
+    rd.positive(v, Reader::join(path, key));
+    return v;
+  };
+  if (type == "ellipse") {
+    rd.mapping(n, path, {"type", "a", "b", "center"});
+    const double a = positive("a"), b = positive("b");
+    const auto [cx, cy] = rd.pair(n, path, "center", false);
+    return build([&] { return std::make_shared<EllipseShape>(a, b, Vec2(cx, cy)); });
+  }
+  if (type == "circle") {
+    rd.mapping(n, path, {"type", "radius", "center"});
+    const double r = positive("radius");
+    const auto [cx, cy] = rd.pair(n, path, "center", false);
+    return build([&] { return std::make_shared<CircleShape>(r, Vec2(cx, cy)); });
+  }
+  if (type == "superellipse") {
+    rd.mapping(n, path, {"type", "a", "b", "exponent", "center"});
+    const double a = positive("a"), b = positive("b");
+    const double e = rd.number(n, path, "exponent");
+    if (e < 2 || e > 20) rd.fail(path + ".exponent must lie in [2, 20] (got " + fmt(e) + ")");
+    const auto [cx, cy] = rd.pair(n, path, "center", false);
+    return build([&] { return std::make_shared<SuperellipseShape>(a, b, e, Vec2(cx, cy)); });
+  }
+  rd.fail(path + ".type '" + type + "' is unknown (expected ellipse, circle or superellipse)");
+}
+
+}  // namespace
+
+void Cell::validate() const {
+  const Checker c{prefixOf(name)};
+  c.nonNegative(gravity, "gravity");
+  c.nonNegative(base.inertia, "base.inertia");
+  c.interval(base.theta_min, base.theta_max, "base.theta_limits");
+  // Angles in cell files are radians; a limit beyond half a turn is almost surely degrees.
+  if (std::abs(base.theta_min) > M_PI + 1e-3 || std::abs(base.theta_max) > M_PI + 1e-3)
+    c.fail("base.theta_limits must lie within [-pi, pi] radians (got [" + fmt(base.theta_min) +
+           ", " + fmt(base.theta_max) + "])");
+  c.positive(base.torque_limit, "base.torque_limit");
+  if (fingers.empty()) c.fail("fingers must list at least one finger");
+  if (numFingers() > kMaxFingers)
+    c.fail("fingers lists " + std::to_string(numFingers()) + " fingers; at most " +
+           std::to_string(kMaxFingers) + " are supported");
+  for (int i = 0; i < numFingers(); ++i) {
+    const FingerParams& f = fingers[i];
+    const std::string p = "fingers[" + std::to_string(i) + "].";
+    c.finite(f.r, p + "r");
+    c.interval(f.stroke_min, f.stroke_max, p + "stroke");
+    c.positive(f.mass, p + "mass");
+    c.positive(f.force_limit, p + "force_limit");
+    c.finite(f.com_offset, p + "com_offset");
+    c.nonNegative(f.inertia, p + "inertia");
+  }
+  if (!object.shape) c.fail("object.shape is missing");
+  // A body's COM lies inside its convex hull: the origin must be left of every tangent
+  // line (by more than 1 nm, so a COM on the boundary is rejected too).
+  for (int k = 0; k < 256; ++k) {
+    Vec2 p, dp, ddp;
+    object.shape->derivatives(2 * M_PI * k / 256, p, dp, ddp);
+    if (!(cross(p, dp) > 1e-9 * dp.norm()))
+      c.fail("object.shape.center puts the COM (the object-frame origin) outside the shape");
+  }
+  c.positive(object.mass, "object.mass");
+  c.positive(object.inertia, "object.inertia");
+  c.nonNegative(friction.mu_static, "friction.static");
+  c.nonNegative(friction.mu_kinetic, "friction.kinetic");
+  if (friction.mu_kinetic > friction.mu_static)
+    c.fail("friction.kinetic (" + fmt(friction.mu_kinetic) + ") must not exceed friction.static (" +
+           fmt(friction.mu_static) + ")");
+}
+
+Cell parseCell(const std::string& yaml_text, const std::string& label) {
+  const Reader rd{{prefixOf(label)}};
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    rd.fail("malformed YAML at line " + std::to_string(e.mark.line + 1) + ", column " +
+            std::to_string(e.mark.column + 1) + ": " + e.msg);
+  }
+  if (root.IsNull()) rd.fail("the cell is empty (expected keys base, fingers, object, friction)");
+  rd.mapping(root, "", {"gravity", "base", "fingers", "object", "friction"});
+
+  Cell cell;
+  cell.name = label;
+  cell.gravity = rd.number(root, "", "gravity", 9.81, false);
+
+  const YAML::Node base = rd.get(root, "", "base");
+  rd.mapping(base, "base", {"inertia", "theta_limits", "torque_limit"});
+  cell.base.inertia = rd.number(base, "base", "inertia");
+  std::tie(cell.base.theta_min, cell.base.theta_max) = rd.pair(base, "base", "theta_limits");
+  cell.base.torque_limit = rd.number(base, "base", "torque_limit");
+
+  const YAML::Node fingers = rd.get(root, "", "fingers");
+  if (!fingers.IsSequence())
+    rd.fail("fingers must be a list of fingers (got " + Reader::describe(fingers) + ")");
+  for (std::size_t i = 0; i < fingers.size(); ++i) {
+    const std::string p = "fingers[" + std::to_string(i) + "]";
+    const YAML::Node f = fingers[i];
+    rd.mapping(f, p, {"r", "stroke", "mass", "force_limit", "com_offset", "inertia"});
+    FingerParams fp;
+    fp.r = rd.number(f, p, "r");
+    std::tie(fp.stroke_min, fp.stroke_max) = rd.pair(f, p, "stroke");
+    fp.mass = rd.number(f, p, "mass");
+    fp.force_limit = rd.number(f, p, "force_limit");
+    fp.com_offset = rd.number(f, p, "com_offset", 0.0, false);
+    fp.inertia = rd.number(f, p, "inertia", 0.0, false);
+    cell.fingers.push_back(fp);
+  }
+
+  const YAML::Node object = rd.get(root, "", "object");
+  rd.mapping(object, "object", {"shape", "mass", "inertia"});
+  cell.object.shape = readShape(rd, rd.get(object, "object", "shape"));
+  cell.object.mass = rd.number(object, "object", "mass");
+  cell.object.inertia = rd.number(object, "object", "inertia");
+
+  const YAML::Node friction = rd.get(root, "", "friction");
+  rd.mapping(friction, "friction", {"static", "kinetic"});
+  cell.friction.mu_static = rd.number(friction, "friction", "static");
+  cell.friction.mu_kinetic = rd.number(friction, "friction", "kinetic", 0.0, false);
+
+  cell.validate();
+  return cell;
+}
+
+Cell loadCell(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path + ": cannot read cell file (it is a directory)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open cell file (" + std::strerror(errno) + ")");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": cannot read cell file");
+  return parseCell(text.str(), path);
+}
+
+}  // namespace rbsf
