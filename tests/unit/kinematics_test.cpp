@@ -2,6 +2,7 @@
 // tangential slip map, J the fingertip Jacobian, h_n and h_t the velocity products.
 #include <gtest/gtest.h>
 
+#include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/model.h"
 #include "test_support.h"
 

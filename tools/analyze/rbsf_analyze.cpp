@@ -8,6 +8,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/state_analysis.h"
 #include "rbsf/tools/cli_values.h"
