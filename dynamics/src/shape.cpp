@@ -35,30 +35,40 @@ struct Sample {
   Vec2 c, dc, ddc;
 };
 
-// Calls visit(sample) for increasing x covering [0, 2 pi). A uniform grid is refined where
-// the tangent turns quickly (superellipse corners, ellipse vertices of high aspect ratio), so
-// that no sampling interval turns by more than about kMaxTurn: local minima of the distance
-// and the zeros of dir.c' are then separated by samples.
+Sample sampleAt(const Shape& shape, double x) {
+  Sample s{x, {}, {}, {}};
+  shape.derivatives(x, s.c, s.dc, s.ddc);
+  return s;
+}
+
+// Visits a and the samples inside (a, b), bisecting while the tangent turns by more than
+// kMaxTurn between neighbours.
+template <class Visit>
+void scanInterval(const Shape& shape, const Sample& a, const Sample& b, int depth, Visit& visit) {
+  constexpr double kMaxTurn = 0.15;
+  double turn = std::atan2(cross(a.dc, b.dc), a.dc.dot(b.dc));
+  if (turn < 0.0) turn += kTwoPi;  // a convex arc turns by (0, 2 pi)
+  if (depth == 0 || turn <= kMaxTurn) {
+    visit(a);
+    return;
+  }
+  const Sample m = sampleAt(shape, 0.5 * (a.x + b.x));
+  scanInterval(shape, a, m, depth - 1, visit);
+  scanInterval(shape, m, b, depth - 1, visit);
+}
+
+// Calls visit(sample) for increasing x covering [0, 2 pi): a uniform grid, refined where the
+// tangent turns quickly (superellipse corners, whose polar parametrisation crowds them into a
+// tiny range of xi; ellipse vertices of high aspect ratio). Between neighbouring samples the
+// curve is then nearly straight, so separate local minima of the distance and the zeros of
+// dir.c' fall into separate intervals.
 template <class Visit>
 void scanBoundary(const Shape& shape, Visit&& visit) {
-  constexpr int kCoarse = 64, kMaxSplit = 32;
-  constexpr double kMaxTurn = 0.15, kH = kTwoPi / kCoarse;
-  auto rate = [](const Sample& s) { return cross(s.dc, s.ddc) / s.dc.squaredNorm(); };
-  Sample a{0.0, {}, {}, {}};
-  shape.derivatives(a.x, a.c, a.dc, a.ddc);
+  constexpr int kCoarse = 64, kDepth = 24;
+  Sample a = sampleAt(shape, 0.0);
   for (int k = 1; k <= kCoarse; ++k) {
-    Sample b{kH * k, {}, {}, {}};
-    shape.derivatives(b.x, b.c, b.dc, b.ddc);
-    double turn = std::atan2(cross(a.dc, b.dc), a.dc.dot(b.dc));
-    if (turn < 0.0) turn += kTwoPi;
-    turn = std::max({turn, kH * rate(a), kH * rate(b)});
-    const int m = std::clamp(static_cast<int>(std::ceil(turn / kMaxTurn)), 1, kMaxSplit);
-    visit(a);
-    for (int j = 1; j < m; ++j) {
-      Sample t{a.x + kH * j / m, {}, {}, {}};
-      shape.derivatives(t.x, t.c, t.dc, t.ddc);
-      visit(t);
-    }
+    const Sample b = sampleAt(shape, kTwoPi * k / kCoarse);
+    scanInterval(shape, a, b, kDepth, visit);
     a = b;
   }
 }
