@@ -35,30 +35,40 @@ struct Sample {
   Vec2 c, dc, ddc;
 };
 
-// Calls visit(sample) for increasing x covering [0, 2 pi). A uniform grid is refined where
-// the tangent turns quickly (superellipse corners, ellipse vertices of high aspect ratio), so
-// that no sampling interval turns by more than about kMaxTurn: local minima of the distance
-// and the zeros of dir.c' are then separated by samples.
+Sample sampleAt(const Shape& shape, double x) {
+  Sample s{x, {}, {}, {}};
+  shape.derivatives(x, s.c, s.dc, s.ddc);
+  return s;
+}
+
+// Visits a and the samples inside (a, b), bisecting while the tangent turns by more than
+// kMaxTurn between neighbours.
+template <class Visit>
+void scanInterval(const Shape& shape, const Sample& a, const Sample& b, int depth, Visit& visit) {
+  constexpr double kMaxTurn = 0.15;
+  double turn = std::atan2(cross(a.dc, b.dc), a.dc.dot(b.dc));
+  if (turn < 0.0) turn += kTwoPi;  // a convex arc turns by (0, 2 pi)
+  if (depth == 0 || turn <= kMaxTurn) {
+    visit(a);
+    return;
+  }
+  const Sample m = sampleAt(shape, 0.5 * (a.x + b.x));
+  scanInterval(shape, a, m, depth - 1, visit);
+  scanInterval(shape, m, b, depth - 1, visit);
+}
+
+// Calls visit(sample) for increasing x covering [0, 2 pi): a uniform grid, refined where the
+// tangent turns quickly (superellipse corners, whose polar parametrisation crowds them into a
+// tiny range of xi; ellipse vertices of high aspect ratio). Between neighbouring samples the
+// curve is then nearly straight, so separate local minima of the distance and the zeros of
+// dir.c' fall into separate intervals.
 template <class Visit>
 void scanBoundary(const Shape& shape, Visit&& visit) {
-  constexpr int kCoarse = 64, kMaxSplit = 32;
-  constexpr double kMaxTurn = 0.15, kH = kTwoPi / kCoarse;
-  auto rate = [](const Sample& s) { return cross(s.dc, s.ddc) / s.dc.squaredNorm(); };
-  Sample a{0.0, {}, {}, {}};
-  shape.derivatives(a.x, a.c, a.dc, a.ddc);
+  constexpr int kCoarse = 64, kDepth = 24;
+  Sample a = sampleAt(shape, 0.0);
   for (int k = 1; k <= kCoarse; ++k) {
-    Sample b{kH * k, {}, {}, {}};
-    shape.derivatives(b.x, b.c, b.dc, b.ddc);
-    double turn = std::atan2(cross(a.dc, b.dc), a.dc.dot(b.dc));
-    if (turn < 0.0) turn += kTwoPi;
-    turn = std::max({turn, kH * rate(a), kH * rate(b)});
-    const int m = std::clamp(static_cast<int>(std::ceil(turn / kMaxTurn)), 1, kMaxSplit);
-    visit(a);
-    for (int j = 1; j < m; ++j) {
-      Sample t{a.x + kH * j / m, {}, {}, {}};
-      shape.derivatives(t.x, t.c, t.dc, t.ddc);
-      visit(t);
-    }
+    const Sample b = sampleAt(shape, kTwoPi * k / kCoarse);
+    scanInterval(shape, a, b, kDepth, visit);
     a = b;
   }
 }
@@ -124,21 +134,19 @@ ClosestPoint makeClosest(const Shape& shape, const Vec2& p, double x) {
   return {Shape::wrap(x), c, (p - c).dot(perp(dc)) > 0.0 ? -d : d};
 }
 
-constexpr double kClosedForm = -1.0;
-
-// A lower bound of the smallest radius of curvature over the boundary, 0 when unknown,
-// kClosedForm when closest() is itself closed-form.
+// A lower bound of the smallest radius of curvature over the whole boundary (0: unknown).
 double minCurvatureRadius(const Shape& shape) {
-  if (dynamic_cast<const CircleShape*>(&shape)) return kClosedForm;
-  if (const auto* e = dynamic_cast<const EllipseShape*>(&shape))
-    return std::min(e->a(), e->b()) * std::min(e->a(), e->b()) / std::max(e->a(), e->b());
+  auto ellipse = [](double a, double b) {
+    return std::min(a, b) * std::min(a, b) / std::max(a, b);
+  };
+  if (const auto* c = dynamic_cast<const CircleShape*>(&shape)) return c->radius();
+  if (const auto* e = dynamic_cast<const EllipseShape*>(&shape)) return ellipse(e->a(), e->b());
   const auto* s = dynamic_cast<const SuperellipseShape*>(&shape);
   if (!s) return 0.0;
-  if (s->exponent() == 2.0)
-    return std::min(s->a(), s->b()) * std::min(s->a(), s->b()) / std::max(s->a(), s->b());
-  // No closed form: take the largest curvature over the scan samples (within a few per cent
-  // of the true maximum for n <= 20) with a factor 2 of margin. The header has no member to
-  // keep it in, so it is cached per thread for the last parameter set seen.
+  if (s->exponent() == 2.0) return ellipse(s->a(), s->b());
+  // No closed form: the largest curvature over the scan samples is within 2% of the true
+  // maximum for n in [2, 20] and aspect ratios up to 100; a factor 2 covers that. The header
+  // has no member to keep it in, so the last parameter set seen is cached per thread.
   thread_local double key_a = 0.0, key_b = 0.0, key_n = 0.0, value = 0.0;
   if (s->a() != key_a || s->b() != key_b || s->exponent() != key_n) {
     double kappa_max = 0.0;
@@ -209,28 +217,25 @@ ClosestPoint Shape::closest(const Vec2& p) const {
 }
 
 ClosestPoint Shape::closestNear(const Vec2& p, double xi_hint) const {
-  const double rho_min = minCurvatureRadius(*this);
-  if (rho_min == kClosedForm) return closest(p);
+  if (dynamic_cast<const CircleShape*>(this)) return closest(p);  // closed form, cheaper
   double x = xi_hint;
   Vec2 c, dc, ddc;
   for (int it = 0; it < 8; ++it) {
     derivatives(x, c, dc, ddc);
-    const Vec2 r = c - p;
-    const double fp = ddc.dot(r) + dc.squaredNorm();
-    if (!(fp > 0.0)) break;
-    const double step = -dc.dot(r) / fp;
+    const double fp = ddc.dot(c - p) + dc.squaredNorm();
+    if (!(fp > 0.0)) break;  // not in the basin of a minimum
+    const double step = -dc.dot(c - p) / fp;
     if (!(std::abs(step) < 0.5)) break;
     x += step;
     if (std::abs(step) > 1e-12) continue;
     derivatives(x, c, dc, ddc);
-    const Vec2 rn = p - c;
-    if (!(ddc.dot(-rn) + dc.squaredNorm() > 0.0)) break;  // a maximum, not a minimum
-    const Vec2 n = perp(dc).normalized();
-    const double depth = rn.dot(n);
+    if (!(ddc.dot(c - p) + dc.squaredNorm() > 0.0)) break;
+    const double depth = (p - c).dot(perp(dc).normalized());
     // Outside, a critical point with p on its outer side is the metric projection onto the
-    // convex set, hence unique. Inside, a disc of radius rho_min rolls freely along the
-    // boundary (Blaschke), so a local minimum at depth <= rho_min is global.
-    if (depth <= 0.0 || depth <= rho_min) return {wrap(x), c, depth > 0.0 ? -rn.norm() : rn.norm()};
+    // convex set, hence unique. Inside, a disc of the smallest radius of curvature rolls freely
+    // along the boundary (Blaschke), so a local minimum no deeper than that radius is global.
+    if (depth <= 0.0 || depth <= minCurvatureRadius(*this))
+      return {wrap(x), c, depth > 0.0 ? -(p - c).norm() : (p - c).norm()};
     break;
   }
   return closest(p);

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -249,7 +251,9 @@ bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) {
     for (std::size_t c = 0; c < cols.size(); ++c) out(cols[c]) = zP(static_cast<Index>(c));
   };
 
-  const long limit = 3 * n + 30;  // Lawson & Hanson's 3n, plus slack for the rejected trials
+  // Lawson & Hanson's 3n on the outer iterations (each inner step removes a passive
+  // variable, so inner steps never outnumber outer ones), plus slack for rejected trials.
+  const long limit = 3 * n + 30;
   long iterations = 0;
   VectorXd w(n);
   VectorXd z(n);
@@ -299,7 +303,6 @@ bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) {
         x = z;
         break;
       }
-      if (++iterations > limit) return false;
       x += alpha * (z - x);
       // The variable that defined alpha leaves the passive set, and so does any other that
       // reached zero up to rounding.

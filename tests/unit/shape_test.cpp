@@ -50,10 +50,10 @@ double implicitValue(const Shape& s, const Vec2& p) {
          std::pow(std::abs(q.y() / se.b()), se.exponent()) - 1.0;
 }
 
-// Reference closest distance: 200000 uniform samples, then golden-section refinement of every
+// Reference closest distance: 100000 uniform samples, then golden-section refinement of every
 // discrete local minimum (so near-ties between separate minima are resolved too).
 double bruteDistance(const Shape& s, const Vec2& p) {
-  constexpr int kN = 200000;
+  constexpr int kN = 100000;
   const double h = kTwoPi / kN;
   std::vector<double> d2(kN);
   int best = 0;
@@ -306,6 +306,9 @@ TEST(Shape, ClosestHardCases) {
   const EllipseShape ellipse(0.3, 0.15, Vec2(-0.1, 0.0));
   const SuperellipseShape box(0.3, 0.15, 20.0, Vec2(0.0, 0.05));
   const SuperellipseShape square(0.2, 0.2, 20.0);
+  // Aspect ratio 100: the polar parametrisation squeezes each end into |xi| < 0.01.
+  const SuperellipseShape sliver(1.0, 0.01, 8.0);
+  const EllipseShape needle(1.0, 0.01);
   std::vector<std::pair<const Shape*, Vec2>> cases = {
       {&ellipse, Vec2(-0.1, 0.0)},      // centre: two symmetric minima
       {&ellipse, Vec2(0.125, 0.0005)},  // near the evolute cusp on the major axis
@@ -319,7 +322,12 @@ TEST(Shape, ClosestHardCases) {
       {&box, Vec2(0.1, 0.05 + 0.15 + 1e-9)},  // just above the flat top
       {&box, Vec2(-1e4, 3e3)},                // far away
       {&square, Vec2(0.0, 0.0)},              // four equal minima
-      {&square, Vec2(0.15, 0.149)},           // on the diagonal near a corner
+      {&square, Vec2(0.15, 0.149)},
+      {&sliver, Vec2(0.99039, -7.88392e-05)},  // inside near the end, closest on a long side
+      {&sliver, Vec2(0.982184, 6.17366e-05)},
+      {&sliver, Vec2(1.003, 0.0101)},  // outside the corner
+      {&needle, Vec2(0.9999, 0.0)},    // inside near the vertex (radius of curvature 1e-4)
+      {&needle, Vec2(0.9995, 1e-5)},   // on the diagonal near a corner
   };
   for (const auto& [s, p] : cases) {
     const ClosestPoint cp = s->closest(p);
