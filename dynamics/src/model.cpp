@@ -78,7 +78,9 @@ void RbsfModel::velocityProducts(const VecQ& q, const VecQ& v, ModelData& data) 
     const double wt = c.tangent.dot(w);
     const double wn = c.normal.dot(w);
     data.h_n[i] = omega * wt + c.curvature * wt * wt - c.normal.dot(jdot) + omega * c.tangent.dot(rel);
-    data.h_t[i] = -(omega + c.curvature * wt) * wn - c.tangent.dot(jdot) - omega * c.normal.dot(rel);
+    // T is taken at the boundary point (not the tip), which adds omega * (n.w) off the
+    // normal constraint; for a held contact (n.w = 0) both readings agree.
+    data.h_t[i] = -c.curvature * wt * wn - c.tangent.dot(jdot) - omega * c.normal.dot(rel);
   }
 }
 

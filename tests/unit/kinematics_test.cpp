@@ -122,7 +122,7 @@ TEST_P(KinematicsTest, PlacementPutsTipsOnTheUnderside) {
 
 TEST(Placement, RefusesUnreachableStrokeNamingTheFinger) {
   const RbsfModel model(test::makeCell(ShapeKind::kEllipse));
-  const Placement p = placeFingers(model, Pose{0.0, 1.5, 0.0}, 0.0);
+  const Placement p = placeFingers(model, Pose{0.1, 1.5, 0.0}, 0.0);
   EXPECT_FALSE(p.ok);
   EXPECT_EQ(p.finger, 0);
   EXPECT_NE(p.message.find("finger 1"), std::string::npos);

@@ -22,7 +22,7 @@ struct Options {
   bool json = false;
 };
 
-nlohmann::json toJson(const StateAnalysis& a) {
+nlohmann::json toJson(const VecQ& q, const StateAnalysis& a) {
   using nlohmann::json;
   json contacts = json::array();
   for (const ContactReport& c : a.contacts) {
@@ -42,6 +42,7 @@ nlohmann::json toJson(const StateAnalysis& a) {
   const StickSolution& s = a.phase.stick;
   const bool sticks = a.phase.phase == Phase::kC || a.phase.phase == Phase::kP;
   json out = {
+      {"q", vectorJson(q)},
       {"contacts", contacts},
       {"accel", vectorJson(a.accel)},
       {"sigma_min", a.sigma_min},
@@ -124,7 +125,7 @@ int run(int argc, char** argv) {
                                        m + 1));
   const StateAnalysis a = analyzeState(model, q, v, tau);
   if (o.json) {
-    const nlohmann::json j = toJson(a);
+    const nlohmann::json j = toJson(q, a);
     requireFinite(j, "analysis");
     std::cout << j.dump(2) << "\n";
   } else {

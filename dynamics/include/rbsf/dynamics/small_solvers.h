@@ -38,12 +38,14 @@ enum class SolveStatus { kOptimal, kInfeasible, kUnbounded };
 ///        G x >= h. Reduces to least-distance programming on the null space of A_eq and
 ///        solves that through NNLS (Lawson & Hanson, ch. 23). A_eq may have dependent rows
 ///        (consistent ones are accepted; an inconsistent system is infeasible). Either
-///        matrix may have zero rows. Never kUnbounded; kInfeasible is also returned in the
+///        matrix may have zero rows. `rhs_scale` is the magnitude of the terms b_eq was
+///        computed from: when they nearly cancel, b_eq's rounding error is relative to
+///        them, not to |b_eq|, and the consistency test must know it. Never kUnbounded; kInfeasible is also returned in the
 ///        (not observed) case that the inner NNLS hits its iteration limit. Throws
 ///        std::invalid_argument on inconsistent sizes.
 SolveStatus leastNormInPolyhedron(const Eigen::MatrixXd& A_eq, const Eigen::VectorXd& b_eq,
                                   const Eigen::MatrixXd& G, const Eigen::VectorXd& h,
-                                  Eigen::VectorXd& x);
+                                  Eigen::VectorXd& x, double rhs_scale = 0.0);
 
 /// \brief Linear program: minimise c^T x subject to A_eq x = b_eq, G x >= h and
 ///        lower <= x <= upper (entries may be +-infinity). Dense two-phase simplex with
