@@ -134,30 +134,6 @@ ClosestPoint makeClosest(const Shape& shape, const Vec2& p, double x) {
   return {Shape::wrap(x), c, (p - c).dot(perp(dc)) > 0.0 ? -d : d};
 }
 
-// A lower bound of the smallest radius of curvature over the whole boundary (0: unknown).
-double minCurvatureRadius(const Shape& shape) {
-  auto ellipse = [](double a, double b) {
-    return std::min(a, b) * std::min(a, b) / std::max(a, b);
-  };
-  if (const auto* c = dynamic_cast<const CircleShape*>(&shape)) return c->radius();
-  if (const auto* e = dynamic_cast<const EllipseShape*>(&shape)) return ellipse(e->a(), e->b());
-  const auto* s = dynamic_cast<const SuperellipseShape*>(&shape);
-  if (!s) return 0.0;
-  if (s->exponent() == 2.0) return ellipse(s->a(), s->b());
-  // No closed form: the largest curvature over the scan samples is within 2% of the true
-  // maximum for n in [2, 20] and aspect ratios up to 100; a factor 2 covers that. The header
-  // has no member to keep it in, so the last parameter set seen is cached per thread.
-  thread_local double key_a = 0.0, key_b = 0.0, key_n = 0.0, value = 0.0;
-  if (s->a() != key_a || s->b() != key_b || s->exponent() != key_n) {
-    double kappa_max = 0.0;
-    scanBoundary(*s, [&](const Sample& t) {
-      kappa_max = std::max(kappa_max, cross(t.dc, t.ddc) / std::pow(t.dc.norm(), 3));
-    });
-    key_a = s->a(), key_b = s->b(), key_n = s->exponent(), value = 0.5 / kappa_max;
-  }
-  return value;
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -234,7 +210,7 @@ ClosestPoint Shape::closestNear(const Vec2& p, double xi_hint) const {
     // Outside, a critical point with p on its outer side is the metric projection onto the
     // convex set, hence unique. Inside, a disc of the smallest radius of curvature rolls freely
     // along the boundary (Blaschke), so a local minimum no deeper than that radius is global.
-    if (depth <= 0.0 || depth <= minCurvatureRadius(*this))
+    if (depth <= 0.0 || depth <= minCurvatureRadius())
       return {wrap(x), c, depth > 0.0 ? -(p - c).norm() : (p - c).norm()};
     break;
   }
@@ -341,6 +317,13 @@ SuperellipseShape::SuperellipseShape(double a, double b, double exponent, const 
   if (!(exponent >= 2.0 && exponent <= 20.0))
     throw InputError("shape.exponent must be in [2, 20] (got " + fmt(exponent) + ")");
   requireFinite(center);
+  // No closed form for n > 2: the largest curvature over the scan samples is within 2% of
+  // the true maximum for n in [2, 20] and aspect ratios up to 100; a factor 2 covers that.
+  double kappa_max = 0.0;
+  scanBoundary(*this, [&](const Sample& t) {
+    kappa_max = std::max(kappa_max, cross(t.dc, t.ddc) / std::pow(t.dc.norm(), 3));
+  });
+  min_curvature_radius_ = 0.5 / kappa_max;
 }
 
 void SuperellipseShape::derivatives(double xi, Vec2& c, Vec2& dc, Vec2& ddc) const {
@@ -375,5 +358,7 @@ void SuperellipseShape::derivatives(double xi, Vec2& c, Vec2& dc, Vec2& ddc) con
 }
 
 double SuperellipseShape::boundingRadius() const { return center_.norm() + std::hypot(a_, b_); }
+
+double SuperellipseShape::minCurvatureRadius() const { return min_curvature_radius_; }
 
 }  // namespace rbsf

@@ -11,17 +11,17 @@ namespace {
 /// Constraint columns of the selected rows (normal rows first, then tangential rows),
 /// with their velocity products and the free-motion acceleration.
 struct RowSystem {
-  Eigen::MatrixXd N;        // (m+4) x rows
-  Eigen::MatrixXd MinvN;    // M^-1 N
-  Eigen::VectorXd free;     // M^-1 (u - Q)
-  Eigen::MatrixXd K;        // N^T M^-1 N
-  Eigen::VectorXd r;        // h + N^T M^-1 (u - Q)
-  double r_scale = 0.0;     // magnitude of the terms summed into r (rounding reference)
+  Eigen::MatrixXd N;      // (m+4) x rows
+  Eigen::MatrixXd MinvN;  // M^-1 N
+  Eigen::VectorXd free;   // M^-1 (u - Q)
+  Eigen::MatrixXd K;      // N^T M^-1 N
+  Eigen::VectorXd r;      // h + N^T M^-1 (u - Q)
+  double r_scale = 0.0;   // magnitude of the terms summed into r (rounding reference)
 };
 
 RowSystem buildRows(const RbsfModel& model, const VecQ& q, const VecQ& v, const VecU& tau,
-                    ModelData& data, const int* normal_rows, int n_normal,
-                    const int* tangent_rows, int n_tangent) {
+                    ModelData& data, const int* normal_rows, int n_normal, const int* tangent_rows,
+                    int n_tangent) {
   model.velocityProducts(q, v, data);
   model.bias(q, v, data.bias);
   const int nq = model.configDim();

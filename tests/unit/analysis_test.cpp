@@ -63,7 +63,8 @@ TEST_P(AnalysisTest, HoldingTorqueBalancesTheObjectInsideTheCones) {
     for (int i = 0; i < m; ++i) {
       EXPECT_GE(h.fn[i], -1e-9);
       EXPECT_LE(std::abs(h.ft[i]), mu * h.fn[i] + 1e-8);
-      EXPECT_LE(std::abs(h.tau[layout::fingerForce(i)]), model.cell().fingers[i].force_limit + 1e-8);
+      EXPECT_LE(std::abs(h.tau[layout::fingerForce(i)]),
+                model.cell().fingers[i].force_limit + 1e-8);
     }
     // Phase C at the holding tau: feasible, and the object stays at rest.
     const VecQ zero = VecQ::Zero(model.configDim());

@@ -14,33 +14,6 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-// Heap-allocation counting for the allocation-free claim of solveLcp(). glibc lets the
-// executable interpose malloc; sanitizers interpose it themselves, so the check is skipped
-// there (the Release build runs it).
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
-#if defined(__has_feature)
-#if !__has_feature(address_sanitizer)
-#define RBSF_COUNT_MALLOC 1
-#endif
-#else
-#define RBSF_COUNT_MALLOC 1
-#endif
-#endif
-
-#ifdef RBSF_COUNT_MALLOC
-extern "C" void* __libc_malloc(std::size_t size);
-namespace {
-std::atomic<bool> g_countMallocs{false};
-std::atomic<long> g_mallocs{0};
-}  // namespace
-extern "C" void* malloc(std::size_t size) noexcept {
-  if (g_countMallocs.load(std::memory_order_relaxed)) {
-    g_mallocs.fetch_add(1, std::memory_order_relaxed);
-  }
-  return __libc_malloc(size);
-}
-#endif
-
 namespace rbsf {
 namespace {
 
@@ -239,41 +212,7 @@ TEST(SolveLcp, NotAPMatrixHitsPivotLimit) {
   EXPECT_GE(st.pivots, 2);
 }
 
-TEST(SolveLcp, DoesNotAllocate) {
-#ifndef RBSF_COUNT_MALLOC
-  GTEST_SKIP() << "malloc cannot be counted in this build (sanitizer or non-glibc)";
-#else
-  std::vector<MatCC> As;
-  std::vector<VecC> ps;
-  for (unsigned seed = 0; seed < 40; ++seed) {
-    std::mt19937 rng(seed);
-    const Index n = 1 + static_cast<Index>(seed % kMaxFingers);
-    MatCC A = randomSpd(rng, n);
-    if (seed % 2 == 1) {  // also the LU branch
-      const MatrixXd k = randomMatrix(rng, n, n);
-      A += MatCC(k - k.transpose());
-    }
-    As.push_back(A);
-    ps.push_back(randomVector(rng, n));
-  }
-  VecC z, w;
-  int pivots = 0;
-  g_mallocs = 0;
-  g_countMallocs = true;
-  for (std::size_t i = 0; i < As.size(); ++i) pivots += solveLcp(As[i], ps[i], z, w).pivots;
-  g_countMallocs = false;
-  EXPECT_EQ(g_mallocs.load(), 0);
-  EXPECT_GT(pivots, 0);  // the pivoting path was exercised too
-
-  // The counter itself works.
-  g_mallocs = 0;
-  g_countMallocs = true;
-  void* volatile probe = std::malloc(64);
-  g_countMallocs = false;
-  std::free(probe);
-  EXPECT_EQ(g_mallocs.load(), 1);
-#endif
-}
+// solveLcp allocates nothing: tests/alloc/no_allocation_test.cpp.
 
 // ---------------------------------------------------------------------------------------
 // NNLS

@@ -119,10 +119,10 @@ int run(int argc, char** argv) {
     q = restingConfiguration(model, parsePose(o.pose, "--pose"), parseAngle(o.theta, "--theta"));
   }
   const VecQ v = o.v.empty() ? VecQ(VecQ::Zero(m + 4)) : parseVelocity(o.v, "--v", m);
-  const VecU tau = o.tau.empty() ? VecU(VecU::Zero(m + 1))
-                                 : VecU(Eigen::Map<const Eigen::VectorXd>(
-                                       parseVector(o.tau, "--tau", m + 1, "tau_theta,tau_1..").data(),
-                                       m + 1));
+  const VecU tau =
+      o.tau.empty() ? VecU(VecU::Zero(m + 1))
+                    : VecU(Eigen::Map<const Eigen::VectorXd>(
+                          parseVector(o.tau, "--tau", m + 1, "tau_theta,tau_1..").data(), m + 1));
   const StateAnalysis a = analyzeState(model, q, v, tau);
   if (o.json) {
     const nlohmann::json j = toJson(q, a);
@@ -137,4 +137,6 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace rbsf::tools
 
-int main(int argc, char** argv) { return rbsf::tools::toolMain("rbsf-analyze", argc, argv, rbsf::tools::run); }
+int main(int argc, char** argv) {
+  return rbsf::tools::toolMain("rbsf-analyze", argc, argv, rbsf::tools::run);
+}

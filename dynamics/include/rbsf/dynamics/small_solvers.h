@@ -40,9 +40,9 @@ enum class SolveStatus { kOptimal, kInfeasible, kUnbounded };
 ///        (consistent ones are accepted; an inconsistent system is infeasible). Either
 ///        matrix may have zero rows. `rhs_scale` is the magnitude of the terms b_eq was
 ///        computed from: when they nearly cancel, b_eq's rounding error is relative to
-///        them, not to |b_eq|, and the consistency test must know it. Never kUnbounded; kInfeasible is also returned in the
-///        (not observed) case that the inner NNLS hits its iteration limit. Throws
-///        std::invalid_argument on inconsistent sizes.
+///        them, not to |b_eq|, and the consistency test must know it. Never kUnbounded; kInfeasible
+///        is also returned in the (not observed) case that the inner NNLS hits its iteration limit.
+///        Throws std::invalid_argument on inconsistent sizes.
 SolveStatus leastNormInPolyhedron(const Eigen::MatrixXd& A_eq, const Eigen::VectorXd& b_eq,
                                   const Eigen::MatrixXd& G, const Eigen::VectorXd& h,
                                   Eigen::VectorXd& x, double rhs_scale = 0.0);
@@ -53,8 +53,8 @@ SolveStatus leastNormInPolyhedron(const Eigen::MatrixXd& A_eq, const Eigen::Vect
 ///        std::invalid_argument on inconsistent sizes or NaN bounds, std::runtime_error if
 ///        the simplex iteration guard trips (only possible through rounding trouble).
 SolveStatus solveLp(const Eigen::VectorXd& c, const Eigen::MatrixXd& A_eq,
-                    const Eigen::VectorXd& b_eq, const Eigen::MatrixXd& G,
-                    const Eigen::VectorXd& h, const Eigen::VectorXd& lower,
-                    const Eigen::VectorXd& upper, Eigen::VectorXd& x, double* objective = nullptr);
+                    const Eigen::VectorXd& b_eq, const Eigen::MatrixXd& G, const Eigen::VectorXd& h,
+                    const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, Eigen::VectorXd& x,
+                    double* objective = nullptr);
 
 }  // namespace rbsf
