@@ -33,7 +33,7 @@ Cell benchCell(int m) {
 void BM_ForwardDynamicsU(benchmark::State& state) {
   const int m = static_cast<int>(state.range(0));
   const RbsfModel model(benchCell(m));
-  const VecQ q = restingConfiguration(model, Pose{0.0, 0.40, 0.05}, 0.1);
+  const VecQ q = restingConfiguration(model, Pose{0.10, 0.40, 0.05}, 0.1);
   VecQ v = VecQ::Zero(m + 4);
   v[layout::kTheta] = 0.2;
   v[layout::kPhi] = 0.1;

@@ -19,7 +19,7 @@ case "$cmd" in
   run)
     ./scripts/install-deps.sh
     configure_build build
-    ./build/tools/rbsf-analyze --cell cells/default.yaml --pose 0,0.40,0
+    ./build/tools/rbsf-analyze --cell cells/default.yaml --pose 0.1,0.40,0
     ;;
   test)
     ./scripts/install-deps.sh

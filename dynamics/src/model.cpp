@@ -36,7 +36,8 @@ void RbsfModel::updateContacts(const VecQ& q, ModelData& data) const {
     c.tip = fingertip(q, i);
     const Vec2 tip_local = rotate(-phi, c.tip - x_o);
     const double hint = data.xi_hint[i];
-    const ClosestPoint cp = std::isfinite(hint) ? s.closestNear(tip_local, hint) : s.closest(tip_local);
+    const ClosestPoint cp =
+        std::isfinite(hint) ? s.closestNear(tip_local, hint) : s.closest(tip_local);
     const BoundaryPoint bp = s.boundary(cp.xi);
     c.xi = cp.xi;
     data.xi_hint[i] = cp.xi;
@@ -72,13 +73,16 @@ void RbsfModel::velocityProducts(const VecQ& q, const VecQ& v, ModelData& data) 
     const ContactFrame& c = data.contacts[i];
     const double l_dot = v[stroke(i)];
     const Vec2 tip_dot = theta_dot * perp(c.tip) + l_dot * axis;
-    const Vec2 rel = tip_dot - x_dot;                      // dp_i/dt - dx_o/dt
-    const Vec2 w = rel - omega * perp(c.lever);            // slip of the tip over the object
+    const Vec2 rel = tip_dot - x_dot;            // dp_i/dt - dx_o/dt
+    const Vec2 w = rel - omega * perp(c.lever);  // slip of the tip over the object
     const Vec2 jdot = -theta_dot * theta_dot * c.tip + 2.0 * theta_dot * l_dot * perp(axis);
     const double wt = c.tangent.dot(w);
     const double wn = c.normal.dot(w);
-    data.h_n[i] = omega * wt + c.curvature * wt * wt - c.normal.dot(jdot) + omega * c.tangent.dot(rel);
-    data.h_t[i] = -(omega + c.curvature * wt) * wn - c.tangent.dot(jdot) - omega * c.normal.dot(rel);
+    data.h_n[i] =
+        omega * wt + c.curvature * wt * wt - c.normal.dot(jdot) + omega * c.tangent.dot(rel);
+    // T is taken at the boundary point (not the tip), which adds omega * (n.w) off the
+    // normal constraint; for a held contact (n.w = 0) both readings agree.
+    data.h_t[i] = -c.curvature * wt * wn - c.tangent.dot(jdot) - omega * c.normal.dot(rel);
   }
 }
 

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -249,7 +251,9 @@ bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) {
     for (std::size_t c = 0; c < cols.size(); ++c) out(cols[c]) = zP(static_cast<Index>(c));
   };
 
-  const long limit = 3 * n + 30;  // Lawson & Hanson's 3n, plus slack for the rejected trials
+  // Lawson & Hanson's 3n on the outer iterations (each inner step removes a passive
+  // variable, so inner steps never outnumber outer ones), plus slack for rejected trials.
+  const long limit = 3 * n + 30;
   long iterations = 0;
   VectorXd w(n);
   VectorXd z(n);
@@ -299,7 +303,6 @@ bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) {
         x = z;
         break;
       }
-      if (++iterations > limit) return false;
       x += alpha * (z - x);
       // The variable that defined alpha leaves the passive set, and so does any other that
       // reached zero up to rounding.
@@ -319,7 +322,7 @@ bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) {
 // =======================================================================================
 
 SolveStatus leastNormInPolyhedron(const MatrixXd& A_eq, const VectorXd& b_eq, const MatrixXd& G,
-                                  const VectorXd& h, VectorXd& x) {
+                                  const VectorXd& h, VectorXd& x, double rhs_scale) {
   const Index r = A_eq.rows();
   const Index p = G.rows();
   const Index n = std::max(A_eq.cols(), G.cols());
@@ -333,6 +336,7 @@ SolveStatus leastNormInPolyhedron(const MatrixXd& A_eq, const VectorXd& b_eq, co
   // least-distance programming in y.
   VectorXd x0 = VectorXd::Zero(n);
   MatrixXd Z;
+  double x_noise = 0.0;  // how far rounding of b_eq (at rhs_scale) can move x
   if (r > 0 && n > 0) {
     Eigen::JacobiSVD<MatrixXd> svd(A_eq, Eigen::ComputeThinU | Eigen::ComputeFullV);
     const VectorXd& s = svd.singularValues();
@@ -340,6 +344,7 @@ SolveStatus leastNormInPolyhedron(const MatrixXd& A_eq, const VectorXd& b_eq, co
     const double cut = kRankTol * (s.size() > 0 ? s(0) : 0.0);
     while (rank < s.size() && s(rank) > cut) ++rank;
     if (rank > 0) {
+      x_noise = rhs_scale / s(rank - 1);
       x0 = svd.matrixV().leftCols(rank) *
            (svd.matrixU().leftCols(rank).transpose() * b_eq).cwiseQuotient(s.head(rank));
     }
@@ -349,7 +354,7 @@ SolveStatus leastNormInPolyhedron(const MatrixXd& A_eq, const VectorXd& b_eq, co
   }
   if (r > 0) {
     const double resid = (A_eq * x0 - b_eq).norm();
-    const double scale = (n > 0 ? A_eq.norm() * x0.norm() : 0.0) + b_eq.norm();
+    const double scale = (n > 0 ? A_eq.norm() * x0.norm() : 0.0) + b_eq.norm() + rhs_scale;
     if (!(resid <= kFeasTol * scale)) return SolveStatus::kInfeasible;
   }
 
@@ -360,6 +365,9 @@ SolveStatus leastNormInPolyhedron(const MatrixXd& A_eq, const VectorXd& b_eq, co
     // hz_i is the signed distance of constraint i from the origin.
     MatrixXd Gz = G * Z;
     VectorXd hz = h - G * x0;
+    // Rounding in b_eq moves the affine set by up to x_noise; a cone's apex may then lie
+    // just off it. Relax each row by what that movement can change it.
+    for (Index i = 0; i < p; ++i) hz(i) -= kFeasTol * G.row(i).norm() * x_noise;
     std::vector<Index> keep;
     for (Index i = 0; i < p; ++i) {
       const double nrm = Gz.row(i).norm();
@@ -418,12 +426,12 @@ SolveStatus leastNormInPolyhedron(const MatrixXd& A_eq, const VectorXd& b_eq, co
   // Verify: the rank cut-off and NNLS tolerances must not hide an infeasible answer.
   if (r > 0) {
     const double resid = (A_eq * x - b_eq).norm();
-    if (!(resid <= kFeasTol * (A_eq.norm() * x.norm() + b_eq.norm()))) {
+    if (!(resid <= kFeasTol * (A_eq.norm() * x.norm() + b_eq.norm() + rhs_scale))) {
       return SolveStatus::kInfeasible;
     }
   }
   for (Index i = 0; i < p; ++i) {
-    const double tol = kFeasTol * (G.row(i).norm() * x.norm() + std::abs(h(i)));
+    const double tol = kFeasTol * (G.row(i).norm() * (x.norm() + x_noise) + std::abs(h(i)));
     if (!(G.row(i).dot(x) >= h(i) - tol)) return SolveStatus::kInfeasible;
   }
   return SolveStatus::kOptimal;

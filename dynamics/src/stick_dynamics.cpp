@@ -11,16 +11,17 @@ namespace {
 /// Constraint columns of the selected rows (normal rows first, then tangential rows),
 /// with their velocity products and the free-motion acceleration.
 struct RowSystem {
-  Eigen::MatrixXd N;        // (m+4) x rows
-  Eigen::MatrixXd MinvN;    // M^-1 N
-  Eigen::VectorXd free;     // M^-1 (u - Q)
-  Eigen::MatrixXd K;        // N^T M^-1 N
-  Eigen::VectorXd r;        // h + N^T M^-1 (u - Q)
+  Eigen::MatrixXd N;      // (m+4) x rows
+  Eigen::MatrixXd MinvN;  // M^-1 N
+  Eigen::VectorXd free;   // M^-1 (u - Q)
+  Eigen::MatrixXd K;      // N^T M^-1 N
+  Eigen::VectorXd r;      // h + N^T M^-1 (u - Q)
+  double r_scale = 0.0;   // magnitude of the terms summed into r (rounding reference)
 };
 
 RowSystem buildRows(const RbsfModel& model, const VecQ& q, const VecQ& v, const VecU& tau,
-                    ModelData& data, const int* normal_rows, int n_normal,
-                    const int* tangent_rows, int n_tangent) {
+                    ModelData& data, const int* normal_rows, int n_normal, const int* tangent_rows,
+                    int n_tangent) {
   model.velocityProducts(q, v, data);
   model.bias(q, v, data.bias);
   const int nq = model.configDim();
@@ -44,6 +45,13 @@ RowSystem buildRows(const RbsfModel& model, const VecQ& q, const VecQ& v, const 
   model.applyMassInverse(q, s.MinvN);
   s.K = s.N.transpose() * s.MinvN;
   s.r = h + s.N.transpose() * s.free;
+  VecQ u, minv_u, minv_q = data.bias;
+  model.generalizedInput(tau, u);
+  minv_u = u;
+  model.applyMassInverse(q, minv_u);
+  model.applyMassInverse(q, minv_q);
+  // Free fall makes N^T M^-1 (u - Q) cancel to rounding: measure the terms, not the sum.
+  s.r_scale = h.norm() + s.N.norm() * (minv_u.norm() + minv_q.norm());
   return s;
 }
 
@@ -68,10 +76,11 @@ StickSolution solvePhaseC(const RbsfModel& model, const VecQ& q, const VecQ& v, 
   }
   StickSolution out;
   Eigen::VectorXd lambda;
-  out.feasible = leastNormInPolyhedron(s.K, -s.r, G, Eigen::VectorXd::Zero(3 * m), lambda) ==
-                 SolveStatus::kOptimal;
+  out.feasible = leastNormInPolyhedron(s.K, -s.r, G, Eigen::VectorXd::Zero(3 * m), lambda,
+                                       s.r_scale) == SolveStatus::kOptimal;
   if (!out.feasible) {
-    leastNormInPolyhedron(s.K, -s.r, Eigen::MatrixXd(0, 2 * m), Eigen::VectorXd(0), lambda);
+    leastNormInPolyhedron(s.K, -s.r, Eigen::MatrixXd(0, 2 * m), Eigen::VectorXd(0), lambda,
+                          s.r_scale);
   }
   if (lambda.size() != 2 * m) lambda = Eigen::VectorXd::Zero(2 * m);
   out.fn = lambda.head(m);

@@ -1,30 +1,49 @@
-// Hot paths allocate nothing: operator new is counted in this binary, and one
-// acceleration-level evaluation after warm-up must not call it.
+// Hot paths allocate nothing: mallocs are counted around each one after warm-up.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cstdlib>
-#include <new>
+#include <vector>
 
 #include "../unit/test_support.h"
+#include "malloc_counter.h"
 #include "rbsf/dynamics/forward_dynamics.h"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "rbsf/dynamics/small_solvers.h"
 
 namespace rbsf {
 namespace {
 
-TEST(NoAllocation, ForwardDynamicsEvaluation) {
+class NoAllocation : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!test::mallocCountingAvailable()) GTEST_SKIP() << "malloc not countable in this build";
+  }
+};
+
+TEST_F(NoAllocation, CounterSeesMalloc) {
+  test::MallocCounter counter;
+  void* volatile probe = std::malloc(64);
+  std::free(probe);
+  EXPECT_EQ(counter.count(), 1);
+}
+
+TEST_F(NoAllocation, LcpSolve) {
+  std::mt19937 rng(5);
+  std::vector<MatCC> As;
+  std::vector<VecC> ps;
+  for (int n = 1; n <= kMaxFingers; ++n) {
+    const Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, n);
+    As.push_back(MatCC(B * B.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n)));
+    ps.push_back(VecC(Eigen::VectorXd::Random(n)));  // mixed signs: pivoting happens
+  }
+  VecC z, w;
+  int pivots = 0;
+  test::MallocCounter counter;
+  for (size_t i = 0; i < As.size(); ++i) pivots += solveLcp(As[i], ps[i], z, w).pivots;
+  EXPECT_EQ(counter.count(), 0);
+  EXPECT_GT(pivots, 0);
+}
+
+TEST_F(NoAllocation, ForwardDynamicsEvaluation) {
   for (int m : {2, 3, 6, 8}) {
     const RbsfModel model(test::makeCell(test::ShapeKind::kSuperellipse, m));
     std::mt19937 rng(m);
@@ -33,9 +52,9 @@ TEST(NoAllocation, ForwardDynamicsEvaluation) {
     const VecU tau = test::randomVector(model.controlDim(), rng, 100.0);
     ModelData data(m);
     forwardDynamicsU(model, q, v, tau, data);  // warm-up: global closest-point search
-    const long before = g_allocations.load();
+    test::MallocCounter counter;
     for (int k = 0; k < 100; ++k) forwardDynamicsU(model, q, v, tau, data);
-    EXPECT_EQ(g_allocations.load() - before, 0) << "m = " << m;
+    EXPECT_EQ(counter.count(), 0) << "m = " << m;
   }
 }
 

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -25,7 +26,8 @@ std::string slurp(const std::string& path) {
 /// Run a shell command line, capturing stdout and stderr separately.
 Result run(const std::string& args) {
   static int counter = 0;
-  const std::string base = ::testing::TempDir() + "rbsf_cli_" + std::to_string(counter++);
+  const std::string base = ::testing::TempDir() + "rbsf_cli_" + std::to_string(getpid()) + "_" +
+                           std::to_string(counter++);
   const std::string cmd = args + " >" + base + ".out 2>" + base + ".err";
   const int raw = std::system(cmd.c_str());
   Result r;
@@ -39,13 +41,14 @@ const std::string kAnalyze = RBSF_ANALYZE_EXE;
 const std::string kCells = std::string(RBSF_SOURCE_DIR) + "/cells/";
 
 std::string writeTemp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
+  // ctest runs each case in its own process, in parallel: names carry the pid.
+  const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_" + name;
   std::ofstream(path) << text;
   return path;
 }
 
 TEST(Analyze, JsonHasEveryKeyForTheDefaultRestingPose) {
-  const Result r = run(kAnalyze + " --cell " + kCells + "default.yaml --pose 0,0.40,0 --json");
+  const Result r = run(kAnalyze + " --cell " + kCells + "default.yaml --pose 0.1,0.40,0 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["contacts"].size(), 3u);
@@ -66,20 +69,32 @@ TEST(Analyze, JsonHasEveryKeyForTheDefaultRestingPose) {
 }
 
 TEST(Analyze, PoseAndExplicitConfigurationAgree) {
-  const Result a = run(kAnalyze + " --cell " + kCells + "default.yaml --pose=0.02,0.41,10deg" +
+  // --pose with degrees and --name=value forms, then the configuration it placed given
+  // back as --q in radians: both paths must analyse the same state.
+  const Result a = run(kAnalyze + " --cell " + kCells + "default.yaml --pose=0.12,0.41,10deg" +
                        " --theta -5deg --json");
   ASSERT_EQ(a.status, 0) << a.err;
   const auto ja = nlohmann::json::parse(a.out);
-  // Rebuild q from the pose and the strokes the placement rule chose: run again with --q
-  // and the holding tau must be identical.
-  const Result held = run(kAnalyze + " --cell " + kCells + "default.yaml --pose 0.02,0.41,10deg" +
-                          " --theta=-0.0872664626 --json");
-  ASSERT_EQ(held.status, 0) << held.err;
-  EXPECT_EQ(nlohmann::json::parse(held.out)["holding_tau"], ja["holding_tau"]);
+  ASSERT_EQ(ja["q"].size(), 7u);
+  EXPECT_NEAR(ja["q"][2].get<double>(), 10 * M_PI / 180, 1e-12);
+  EXPECT_NEAR(ja["q"][3].get<double>(), -5 * M_PI / 180, 1e-12);
+  std::string q;
+  for (const auto& x : ja["q"]) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", x.get<double>());
+    if (!q.empty()) q += ',';
+    q += buf;
+  }
+  const Result b = run(kAnalyze + " --cell " + kCells + "default.yaml --q " + q + " --json");
+  ASSERT_EQ(b.status, 0) << b.err;
+  const auto jb = nlohmann::json::parse(b.out);
+  EXPECT_EQ(jb["q"], ja["q"]);
+  EXPECT_EQ(jb["holding_tau"], ja["holding_tau"]);
+  EXPECT_EQ(jb["accel"], ja["accel"]);
 }
 
 TEST(Analyze, TableIsTheDefault) {
-  const Result r = run(kAnalyze + " --cell " + kCells + "default.yaml --pose 0,0.40,0");
+  const Result r = run(kAnalyze + " --cell " + kCells + "default.yaml --pose 0.1,0.40,0");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("holding tau"), std::string::npos);
   EXPECT_NE(r.out.find("sigma_min"), std::string::npos);
@@ -117,18 +132,18 @@ std::vector<BadCase> badCases() {
                 "friction: {static: 0.5}\n");
   const std::string malformed = writeTemp("malformed.yaml", "base: {inertia: [1,\n");
   return {
-      {"missing_file", "--cell /nonexistent.yaml --pose 0,0.4,0", "/nonexistent.yaml"},
-      {"malformed_yaml", "--cell " + malformed + " --pose 0,0.4,0", "malformed.yaml"},
-      {"negative_mass", "--cell " + neg_mass + " --pose 0,0.4,0", "object.mass"},
-      {"zero_fingers", "--cell " + no_fingers + " --pose 0,0.4,0", "fingers"},
-      {"non_numeric_v", cell + " --pose 0,0.4,0 --v 0,0,abc,0,0,0,0", "--v"},
-      {"short_tau", cell + " --pose 0,0.4,0 --tau 1,2", "--tau"},
+      {"missing_file", "--cell /nonexistent.yaml --pose 0.1,0.4,0", "/nonexistent.yaml"},
+      {"malformed_yaml", "--cell " + malformed + " --pose 0.1,0.4,0", "malformed.yaml"},
+      {"negative_mass", "--cell " + neg_mass + " --pose 0.1,0.4,0", "object.mass"},
+      {"zero_fingers", "--cell " + no_fingers + " --pose 0.1,0.4,0", "fingers"},
+      {"non_numeric_v", cell + " --pose 0.1,0.4,0 --v 0,0,abc,0,0,0,0", "--v"},
+      {"short_tau", cell + " --pose 0.1,0.4,0 --tau 1,2", "--tau"},
       {"short_q", cell + " --q 0,0.4,0,0", "--q"},
       {"bad_angle", cell + " --pose 0,0.4,30degrees", "--pose"},
       {"off_boundary", cell + " --q 0,0.4,0,0,0.30,0.25,0.30", "finger 1"},
-      {"unreachable", cell + " --pose 0,1.4,0", "finger 1"},
+      {"unreachable", cell + " --pose 0.1,1.4,0", "finger 1"},
       {"no_state", cell, "--q or --pose"},
-      {"unknown_option", cell + " --pose 0,0.4,0 --frobnicate 1", "frobnicate"},
+      {"unknown_option", cell + " --pose 0.1,0.4,0 --frobnicate 1", "frobnicate"},
   };
 }
 

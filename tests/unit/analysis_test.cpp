@@ -63,7 +63,8 @@ TEST_P(AnalysisTest, HoldingTorqueBalancesTheObjectInsideTheCones) {
     for (int i = 0; i < m; ++i) {
       EXPECT_GE(h.fn[i], -1e-9);
       EXPECT_LE(std::abs(h.ft[i]), mu * h.fn[i] + 1e-8);
-      EXPECT_LE(std::abs(h.tau[layout::fingerForce(i)]), model.cell().fingers[i].force_limit + 1e-8);
+      EXPECT_LE(std::abs(h.tau[layout::fingerForce(i)]),
+                model.cell().fingers[i].force_limit + 1e-8);
     }
     // Phase C at the holding tau: feasible, and the object stays at rest.
     const VecQ zero = VecQ::Zero(model.configDim());
@@ -79,7 +80,7 @@ TEST(Holding, TooWeakFingersCannotHold) {
   Cell cell = test::makeCell(ShapeKind::kEllipse, 3);
   for (FingerParams& f : cell.fingers) f.force_limit = 30.0;  // 24 kg part: needs ~235 N
   const RbsfModel model(cell);
-  const VecQ q = restingConfiguration(model, Pose{0.0, 0.40, 0.0}, 0.0);
+  const VecQ q = restingConfiguration(model, Pose{0.10, 0.40, 0.0}, 0.0);
   ModelData d(3);
   model.updateContacts(q, d);
   EXPECT_FALSE(holdingTorques(model, q, d).feasible);
@@ -131,7 +132,7 @@ TEST_P(AnalysisTest, PivotPhaseHoldsItsContactAndLetsOthersSlide) {
 
 TEST(Classification, SlidingContactsGivePhaseU) {
   const RbsfModel model(test::makeCell(ShapeKind::kEllipse, 3));
-  const VecQ q = restingConfiguration(model, Pose{0.0, 0.40, 0.0}, 0.0);
+  const VecQ q = restingConfiguration(model, Pose{0.10, 0.40, 0.0}, 0.0);
   ModelData d(3);
   model.updateContacts(q, d);
   // The object translates sideways over still fingers: every contact slips.
@@ -141,8 +142,13 @@ TEST(Classification, SlidingContactsGivePhaseU) {
   const PhaseClassification c = classifyPhase(model, q, v, tau, d);
   EXPECT_EQ(c.sticking, 0);
   EXPECT_EQ(c.phase, Phase::kU);
-  // At rest with no finger force the part cannot be held: not C.
-  EXPECT_NE(classifyPhase(model, q, VecQ::Zero(model.configDim()), tau, d).phase, Phase::kC);
+  // At rest, finger 3 alone pushing hard: keeping a common stroke would need fingers 1
+  // and 2, which gravity pulls down, to pull on the part. Not C.
+  VecU push = VecU::Zero(model.controlDim());
+  push[layout::fingerForce(2)] = 800.0;
+  const VecQ rest = VecQ::Zero(model.configDim());
+  EXPECT_FALSE(solvePhaseC(model, q, rest, push, d).feasible);
+  EXPECT_NE(classifyPhase(model, q, rest, push, d).phase, Phase::kC);
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, AnalysisTest,

@@ -97,8 +97,7 @@ TEST_P(KinematicsTest, VelocityProductsMatchFiniteDifferencesAlongTrajectory) {
       ModelData a(m), b(m);
       model.updateContacts(q + e2 * v, a);
       model.updateContacts(q - e2 * v, b);
-      const double g2 =
-          (a.contacts[i].gap - 2 * d.contacts[i].gap + b.contacts[i].gap) / (e2 * e2);
+      const double g2 = (a.contacts[i].gap - 2 * d.contacts[i].gap + b.contacts[i].gap) / (e2 * e2);
       EXPECT_NEAR(d.h_n[i], g2, 1e-3 * (1 + std::abs(g2)));
     }
   }
@@ -122,7 +121,7 @@ TEST_P(KinematicsTest, PlacementPutsTipsOnTheUnderside) {
 
 TEST(Placement, RefusesUnreachableStrokeNamingTheFinger) {
   const RbsfModel model(test::makeCell(ShapeKind::kEllipse));
-  const Placement p = placeFingers(model, Pose{0.0, 1.5, 0.0}, 0.0);
+  const Placement p = placeFingers(model, Pose{0.1, 1.5, 0.0}, 0.0);
   EXPECT_FALSE(p.ok);
   EXPECT_EQ(p.finger, 0);
   EXPECT_NE(p.message.find("finger 1"), std::string::npos);

@@ -50,10 +50,10 @@ double implicitValue(const Shape& s, const Vec2& p) {
          std::pow(std::abs(q.y() / se.b()), se.exponent()) - 1.0;
 }
 
-// Reference closest distance: 200000 uniform samples, then golden-section refinement of every
+// Reference closest distance: 100000 uniform samples, then golden-section refinement of every
 // discrete local minimum (so near-ties between separate minima are resolved too).
 double bruteDistance(const Shape& s, const Vec2& p) {
-  constexpr int kN = 200000;
+  constexpr int kN = 100000;
   const double h = kTwoPi / kN;
   std::vector<double> d2(kN);
   int best = 0;

@@ -3,6 +3,8 @@
 
 #include <memory>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/model.h"
@@ -18,9 +20,9 @@ inline std::shared_ptr<const Shape> makeShape(ShapeKind kind) {
     case ShapeKind::kEllipse:
       return std::make_shared<EllipseShape>(0.30, 0.15, Vec2(-0.10, 0.0));
     case ShapeKind::kCircle:
-      return std::make_shared<CircleShape>(0.18, Vec2(0.03, -0.02));
+      return std::make_shared<CircleShape>(0.25, Vec2(0.03, -0.02));
     case ShapeKind::kSuperellipse:
-      return std::make_shared<SuperellipseShape>(0.28, 0.16, 4.0, Vec2(0.05, 0.01));
+      return std::make_shared<SuperellipseShape>(0.30, 0.16, 4.0, Vec2(0.05, 0.01));
   }
   return nullptr;
 }
@@ -50,15 +52,22 @@ inline Cell makeCell(ShapeKind kind = ShapeKind::kEllipse, int m = 3) {
   return c;
 }
 
-/// A resting configuration near the default pose with every tip on the boundary.
+/// COM x [m] that centres each test shape over the fingers.
+inline double centredX(const RbsfModel& model) {
+  const std::string type = model.shape().type();
+  return type == "ellipse" ? 0.10 : type == "circle" ? -0.03 : -0.05;
+}
+
+/// A resting configuration near the centred pose with every tip on the boundary.
 inline VecQ randomContactState(const RbsfModel& model, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (;;) {
-    Pose pose{0.03 * u(rng), 0.40 + 0.03 * u(rng), 0.25 * u(rng)};
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    Pose pose{centredX(model) + 0.03 * u(rng), 0.40 + 0.03 * u(rng), 0.25 * u(rng)};
     const double theta = 0.3 * u(rng);
     const Placement p = placeFingers(model, pose, theta);
     if (p.ok) return restingConfiguration(model, pose, theta);
   }
+  throw std::logic_error("test cell: no reachable resting pose near the centred one");
 }
 
 inline VecQ randomVector(int n, std::mt19937& rng, double scale = 1.0) {

@@ -22,7 +22,7 @@ struct Options {
   bool json = false;
 };
 
-nlohmann::json toJson(const StateAnalysis& a) {
+nlohmann::json toJson(const VecQ& q, const StateAnalysis& a) {
   using nlohmann::json;
   json contacts = json::array();
   for (const ContactReport& c : a.contacts) {
@@ -42,6 +42,7 @@ nlohmann::json toJson(const StateAnalysis& a) {
   const StickSolution& s = a.phase.stick;
   const bool sticks = a.phase.phase == Phase::kC || a.phase.phase == Phase::kP;
   json out = {
+      {"q", vectorJson(q)},
       {"contacts", contacts},
       {"accel", vectorJson(a.accel)},
       {"sigma_min", a.sigma_min},
@@ -118,13 +119,13 @@ int run(int argc, char** argv) {
     q = restingConfiguration(model, parsePose(o.pose, "--pose"), parseAngle(o.theta, "--theta"));
   }
   const VecQ v = o.v.empty() ? VecQ(VecQ::Zero(m + 4)) : parseVelocity(o.v, "--v", m);
-  const VecU tau = o.tau.empty() ? VecU(VecU::Zero(m + 1))
-                                 : VecU(Eigen::Map<const Eigen::VectorXd>(
-                                       parseVector(o.tau, "--tau", m + 1, "tau_theta,tau_1..").data(),
-                                       m + 1));
+  const VecU tau =
+      o.tau.empty() ? VecU(VecU::Zero(m + 1))
+                    : VecU(Eigen::Map<const Eigen::VectorXd>(
+                          parseVector(o.tau, "--tau", m + 1, "tau_theta,tau_1..").data(), m + 1));
   const StateAnalysis a = analyzeState(model, q, v, tau);
   if (o.json) {
-    const nlohmann::json j = toJson(a);
+    const nlohmann::json j = toJson(q, a);
     requireFinite(j, "analysis");
     std::cout << j.dump(2) << "\n";
   } else {
@@ -136,4 +137,6 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace rbsf::tools
 
-int main(int argc, char** argv) { return rbsf::tools::toolMain("rbsf-analyze", argc, argv, rbsf::tools::run); }
+int main(int argc, char** argv) {
+  return rbsf::tools::toolMain("rbsf-analyze", argc, argv, rbsf::tools::run);
+}

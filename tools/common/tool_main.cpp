@@ -16,9 +16,9 @@ void parseCommandLine(CLI::App& app, int argc, char** argv) {
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
-    const bool numeric_next = i + 1 < argc && argv[i + 1][0] == '-' &&
-                              (std::isdigit(static_cast<unsigned char>(argv[i + 1][1])) ||
-                               argv[i + 1][1] == '.');
+    const bool numeric_next =
+        i + 1 < argc && argv[i + 1][0] == '-' &&
+        (std::isdigit(static_cast<unsigned char>(argv[i + 1][1])) || argv[i + 1][1] == '.');
     if (a.rfind("--", 0) == 0 && a.find('=') == std::string::npos && numeric_next) {
       a += "=";
       a += argv[++i];
@@ -36,8 +36,7 @@ void parseCommandLine(CLI::App& app, int argc, char** argv) {
   }
 }
 
-int toolMain(const char* name, int argc, char** argv,
-             const std::function<int(int, char**)>& body) {
+int toolMain(const char* name, int argc, char** argv, const std::function<int(int, char**)>& body) {
   try {
     return body(argc, argv);
   } catch (const HelpPrinted&) {

@@ -13,21 +13,21 @@ namespace rbsf {
 
 /// \brief The rotational base.
 struct BaseParams {
-  double inertia = 0.0;             ///< I_b about the base axis [kg m^2]
-  double theta_min = -M_PI;         ///< lower base angle limit [rad]
-  double theta_max = M_PI;          ///< upper base angle limit [rad]
-  double torque_limit = 0.0;        ///< |tau_theta| bound [N m]
+  double inertia = 0.0;       ///< I_b about the base axis [kg m^2]
+  double theta_min = -M_PI;   ///< lower base angle limit [rad]
+  double theta_max = M_PI;    ///< upper base angle limit [rad]
+  double torque_limit = 0.0;  ///< |tau_theta| bound [N m]
 };
 
 /// \brief One single-jointed (prismatic) finger.
 struct FingerParams {
-  double r = 0.0;             ///< lateral offset along the base x axis [m]
-  double stroke_min = 0.0;    ///< lower stroke limit of l_i [m]
-  double stroke_max = 0.0;    ///< upper stroke limit of l_i [m]
-  double mass = 0.0;          ///< carriage mass m_i [kg]
-  double force_limit = 0.0;   ///< |tau_i| bound [N]
-  double com_offset = 0.0;    ///< s_i: carriage COM at base point (r_i, l_i + s_i) [m]
-  double inertia = 0.0;       ///< J_i: carriage inertia about its COM [kg m^2]
+  double r = 0.0;            ///< lateral offset along the base x axis [m]
+  double stroke_min = 0.0;   ///< lower stroke limit of l_i [m]
+  double stroke_max = 0.0;   ///< upper stroke limit of l_i [m]
+  double mass = 0.0;         ///< carriage mass m_i [kg]
+  double force_limit = 0.0;  ///< |tau_i| bound [N]
+  double com_offset = 0.0;   ///< s_i: carriage COM at base point (r_i, l_i + s_i) [m]
+  double inertia = 0.0;      ///< J_i: carriage inertia about its COM [kg m^2]
 };
 
 /// \brief The rigid workpart.
@@ -50,7 +50,7 @@ struct Cell {
   std::vector<FingerParams> fingers;
   ObjectParams object;
   FrictionParams friction;
-  std::string name;       ///< file name or label, for messages
+  std::string name;  ///< file name or label, for messages
 
   /// \brief Number of fingers m.
   int numFingers() const { return static_cast<int>(fingers.size()); }

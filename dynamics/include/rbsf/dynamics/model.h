@@ -44,7 +44,7 @@ class RbsfModel {
   ///        (exact for contacts with zero gap):
   ///        w = dp_i/dt - dx_o/dt - omega S c_i (tip velocity relative to the object),
   ///        h_n = omega t.w + kappa (t.w)^2 - n.(dJ_i/dt Theta') + omega t.(dp_i/dt - dx_o/dt),
-  ///        h_t = -(omega + kappa t.w)(n.w) - t.(dJ_i/dt Theta') - omega n.(dp_i/dt - dx_o/dt),
+  ///        h_t = -kappa (t.w)(n.w) - t.(dJ_i/dt Theta') - omega n.(dp_i/dt - dx_o/dt),
   ///        with dJ_i/dt Theta' = -theta'^2 p_i + 2 theta' l_i' S R(theta)(0, 1).
   void velocityProducts(const VecQ& q, const VecQ& v, ModelData& data) const;
 

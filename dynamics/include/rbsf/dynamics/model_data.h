@@ -29,7 +29,7 @@ struct ModelData {
   /// \brief Size every buffer for m fingers (1 <= m <= kMaxFingers).
   explicit ModelData(int m);
 
-  int m;                                        ///< number of fingers
+  int m;  ///< number of fingers
   std::array<ContactFrame, kMaxFingers> contacts;
   VecC xi_hint;   ///< previous contact parameters (NaN: search globally)
   MatQC G1;       ///< normal constraint columns (eq. 14), (m+4) x m

@@ -26,13 +26,13 @@ bool comBetweenNormals(const ModelData& data, int i, int j);
 
 /// \brief Range of the object's angular acceleration with every contact kept closed.
 struct OmegaDotRange {
-  bool feasible = false;     ///< some tau within limits keeps every contact closed
-  double min = 0.0;          ///< smallest omega_o' [rad/s^2]
-  double max = 0.0;          ///< largest omega_o' [rad/s^2]
-  bool positive = false;     ///< omega_o' > 0 is achievable
-  bool negative = false;     ///< omega_o' < 0 is achievable
-  Eigen::VectorXd tau_max;   ///< a tau achieving max
-  Eigen::VectorXd tau_min;   ///< a tau achieving min
+  bool feasible = false;    ///< some tau within limits keeps every contact closed
+  double min = 0.0;         ///< smallest omega_o' [rad/s^2]
+  double max = 0.0;         ///< largest omega_o' [rad/s^2]
+  bool positive = false;    ///< omega_o' > 0 is achievable
+  bool negative = false;    ///< omega_o' < 0 is achievable
+  Eigen::VectorXd tau_max;  ///< a tau achieving max
+  Eigen::VectorXd tau_min;  ///< a tau achieving min
 };
 
 /// \brief Exact range of omega_o' over every tau within the cell's limits such that all

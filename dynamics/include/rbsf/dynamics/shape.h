@@ -10,6 +10,7 @@
 /// so that dt/ds = kappa n and dn/ds = -kappa t along arc length s.
 /// Lengths are in metres, xi is dimensionless.
 
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -23,7 +24,7 @@ struct BoundaryPoint {
   Vec2 tangent;      ///< unit tangent t(xi)
   Vec2 normal;       ///< inward unit normal n(xi) = S t(xi)
   double speed;      ///< |c'(xi)| [m per unit xi]
-  double curvature;  ///< kappa(xi) [1/m]
+  double curvature;  ///< kappa(xi) >= 0 [1/m]
 };
 
 /// \brief Closest boundary point to a query point (object frame).
@@ -46,6 +47,10 @@ class Shape {
 
   /// \brief Radius of a circle about the COM that contains the whole shape [m].
   virtual double boundingRadius() const = 0;
+
+  /// \brief A positive lower bound of the radius of curvature over the whole boundary [m]:
+  ///        a point inside the shape no deeper than this has a unique closest point.
+  virtual double minCurvatureRadius() const = 0;
 
   /// \brief Point, tangent, inward normal, speed and curvature at xi.
   BoundaryPoint boundary(double xi) const;
@@ -80,6 +85,9 @@ class EllipseShape final : public Shape {
   std::string type() const override { return "ellipse"; }
   void derivatives(double xi, Vec2& c, Vec2& dc, Vec2& ddc) const override;
   double boundingRadius() const override;
+  double minCurvatureRadius() const override {
+    return std::min(a_, b_) * std::min(a_, b_) / std::max(a_, b_);
+  }
   double a() const { return a_; }
   double b() const { return b_; }
   const Vec2& center() const { return center_; }
@@ -97,6 +105,7 @@ class CircleShape final : public Shape {
   std::string type() const override { return "circle"; }
   void derivatives(double xi, Vec2& c, Vec2& dc, Vec2& ddc) const override;
   double boundingRadius() const override;
+  double minCurvatureRadius() const override { return r_; }
   ClosestPoint closest(const Vec2& p) const override;
   double radius() const { return r_; }
   const Vec2& center() const { return center_; }
@@ -117,6 +126,8 @@ class SuperellipseShape final : public Shape {
   std::string type() const override { return "superellipse"; }
   void derivatives(double xi, Vec2& c, Vec2& dc, Vec2& ddc) const override;
   double boundingRadius() const override;
+  /// Half the smallest radius of curvature over the construction-time scan (within 2%).
+  double minCurvatureRadius() const override;
   double a() const { return a_; }
   double b() const { return b_; }
   double exponent() const { return n_; }
@@ -125,6 +136,7 @@ class SuperellipseShape final : public Shape {
  private:
   double a_, b_, n_;
   Vec2 center_;
+  double min_curvature_radius_ = 0.0;
 };
 
 }  // namespace rbsf

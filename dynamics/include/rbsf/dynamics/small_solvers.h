@@ -21,11 +21,14 @@ struct LcpStatus {
 ///        Murty's least-index principal pivoting, started from the all-active set (every
 ///        contact closed), which is the usual answer. Finite and exact when A is a
 ///        P-matrix (A = G1^T M^-1 G1 with G1 of full column rank is positive definite).
-///        Allocation-free for n <= kMaxFingers.
+///        Allocation-free for n <= kMaxFingers. On return z >= 0, w >= 0 and z_i w_i = 0
+///        hold exactly; w = A z + p to rounding. Throws std::invalid_argument if A is not
+///        n x n.
 LcpStatus solveLcp(const MatCC& A, const VecC& p, VecC& z, VecC& w);
 
 /// \brief Lawson-Hanson NNLS: minimise |E x - f| subject to x >= 0. Exact active set.
-/// \return false if the iteration limit was hit.
+/// \return false if the iteration limit was hit. Throws std::invalid_argument if
+///         f.size() != E.rows().
 bool solveNnls(const Eigen::MatrixXd& E, const Eigen::VectorXd& f, Eigen::VectorXd& x);
 
 /// \brief Result of leastNormInPolyhedron() and solveLp().
@@ -35,17 +38,23 @@ enum class SolveStatus { kOptimal, kInfeasible, kUnbounded };
 ///        G x >= h. Reduces to least-distance programming on the null space of A_eq and
 ///        solves that through NNLS (Lawson & Hanson, ch. 23). A_eq may have dependent rows
 ///        (consistent ones are accepted; an inconsistent system is infeasible). Either
-///        matrix may have zero rows.
+///        matrix may have zero rows. `rhs_scale` is the magnitude of the terms b_eq was
+///        computed from: when they nearly cancel, b_eq's rounding error is relative to
+///        them, not to |b_eq|, and the consistency test must know it. Never kUnbounded; kInfeasible
+///        is also returned in the (not observed) case that the inner NNLS hits its iteration limit.
+///        Throws std::invalid_argument on inconsistent sizes.
 SolveStatus leastNormInPolyhedron(const Eigen::MatrixXd& A_eq, const Eigen::VectorXd& b_eq,
                                   const Eigen::MatrixXd& G, const Eigen::VectorXd& h,
-                                  Eigen::VectorXd& x);
+                                  Eigen::VectorXd& x, double rhs_scale = 0.0);
 
 /// \brief Linear program: minimise c^T x subject to A_eq x = b_eq, G x >= h and
 ///        lower <= x <= upper (entries may be +-infinity). Dense two-phase simplex with
-///        Bland's rule (no cycling). On kOptimal, x holds an optimal vertex.
+///        Bland's rule (no cycling). On kOptimal, x holds an optimal vertex. Throws
+///        std::invalid_argument on inconsistent sizes or NaN bounds, std::runtime_error if
+///        the simplex iteration guard trips (only possible through rounding trouble).
 SolveStatus solveLp(const Eigen::VectorXd& c, const Eigen::MatrixXd& A_eq,
-                    const Eigen::VectorXd& b_eq, const Eigen::MatrixXd& G,
-                    const Eigen::VectorXd& h, const Eigen::VectorXd& lower,
-                    const Eigen::VectorXd& upper, Eigen::VectorXd& x, double* objective = nullptr);
+                    const Eigen::VectorXd& b_eq, const Eigen::MatrixXd& G, const Eigen::VectorXd& h,
+                    const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, Eigen::VectorXd& x,
+                    double* objective = nullptr);
 
 }  // namespace rbsf

@@ -32,8 +32,8 @@ struct StateAnalysis {
   bool phase_c_feasible = false;  ///< sticking at every contact fits the cones at this tau
   OmegaDotRange omega_dot;        ///< achievable omega_o' with contacts closed (paper 3)
   std::vector<std::pair<int, int>> com_regions;  ///< contact pairs whose normals enclose the COM
-  bool com_in_end_region = false;  ///< the pair of outermost fingers encloses the COM
-  HoldingSolution holding;         ///< static holding at rest (v = 0)
+  bool com_in_end_region = false;                ///< the pair of outermost fingers encloses the COM
+  HoldingSolution holding;                       ///< static holding at rest (v = 0)
 };
 
 /// \brief G1's smallest singular value below which the model is called indeterminate.

@@ -30,8 +30,7 @@ void parseCommandLine(CLI::App& app, int argc, char** argv);
 
 /// \brief Run `body`, mapping InputError (and CLI errors) to exit status 2 and any other
 ///        exception to 1, each with one line "<name>: error: <message>" on stderr.
-int toolMain(const char* name, int argc, char** argv,
-             const std::function<int(int, char**)>& body);
+int toolMain(const char* name, int argc, char** argv, const std::function<int(int, char**)>& body);
 
 /// \brief A JSON array of an Eigen vector's entries.
 nlohmann::json vectorJson(const Eigen::Ref<const Eigen::VectorXd>& v);
