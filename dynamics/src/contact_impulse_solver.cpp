@@ -91,7 +91,20 @@ ImpulseSolvePath ContactImpulseSolver::solve() {
     if (!solveModes()) break;
     if (verifyAndUpdateModes()) return ImpulseSolvePath::kModeGuess;
   }
-  return solveLemke() ? ImpulseSolvePath::kLemke : ImpulseSolvePath::kFailed;
+  if (!solveLemke()) return ImpulseSolvePath::kFailed;
+  // Lemke solved the regularised LCP directly; re-solving its mode set cleans the
+  // null-space component as on the other path (same answer where the problem is regular).
+  lemke_lambda_ = lambda;
+  lemke_y_ = y;
+  const auto lemke_closed = closed;
+  const auto lemke_friction = friction;
+  if (!solveModes() || !verifyAndUpdateModes()) {
+    lambda = lemke_lambda_;
+    y = lemke_y_;
+    closed = lemke_closed;
+    friction = lemke_friction;
+  }
+  return ImpulseSolvePath::kLemke;
 }
 
 bool ContactImpulseSolver::solveModes() {
