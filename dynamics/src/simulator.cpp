@@ -15,6 +15,9 @@ using layout::kTheta;
 using layout::kX;
 using layout::kY;
 
+// Gap and anchor errors below this need no correction [m].
+constexpr double kDriftFloor = 1e-13;
+
 /// Configuration index and range of the mechanism coordinate k (0: theta, k >= 1: stroke).
 void limitOf(const Cell& cell, int k, int& index, double& lo, double& hi) {
   if (k == 0) {
@@ -191,7 +194,8 @@ void Simulator::correctDrift(const SimState& state, SimulatorWorkspace& ws) cons
     ws.ec[n++] = f.tangent.dot(stuck - f.tip);
   }
   ws.dq.setZero(model_.configDim());
-  if (n == 0) return;
+  // Errors at rounding level need no correction (the common case at rest).
+  if (n == 0 || ws.ec.head(n).cwiseAbs().maxCoeff() < kDriftFloor) return;
   ws.Dc.resize(n, n);
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b) ws.Dc(a, b) = s.D(ws.corr_row[a], ws.corr_row[b]);
