@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "rbsf/dynamics/errors.h"
 
 namespace rbsf {
@@ -27,29 +29,35 @@ void RbsfModel::fingertipJacobian(const VecQ& q, int i, Vec2& d_theta, Vec2& d_s
 
 void RbsfModel::updateContacts(const VecQ& q, ModelData& data) const {
   const Shape& s = shape();
-  const double phi = q[kPhi];
+  const Mat2 R_phi = Eigen::Rotation2Dd(q[kPhi]).toRotationMatrix();
+  const Mat2 R_theta = Eigen::Rotation2Dd(q[kTheta]).toRotationMatrix();
   const Vec2 x_o(q[kX], q[kY]);
+  const Vec2 d_stroke = R_theta.col(1);  // R(theta) (0, 1): every finger's direction
   data.G1.setZero();
   data.T.setZero();
   for (int i = 0; i < m_; ++i) {
     ContactFrame& c = data.contacts[i];
-    c.tip = fingertip(q, i);
-    const Vec2 tip_local = rotate(-phi, c.tip - x_o);
+    c.tip = R_theta * Vec2(cell_.fingers[i].r, q[stroke(i)]);
+    const Vec2 tip_local = R_phi.transpose() * (c.tip - x_o);
     const double hint = data.xi_hint[i];
-    const ClosestPoint cp =
-        std::isfinite(hint) ? s.closestNear(tip_local, hint) : s.closest(tip_local);
-    const BoundaryPoint bp = s.boundary(cp.xi);
+    BoundaryPoint bp;
+    ClosestPoint cp;
+    if (std::isfinite(hint)) {
+      cp = s.closestNear(tip_local, hint, &bp);
+    } else {
+      cp = s.closest(tip_local);
+      bp = s.boundary(cp.xi);
+    }
     c.xi = cp.xi;
     data.xi_hint[i] = cp.xi;
     c.gap = cp.signed_distance;
-    c.lever = rotate(phi, bp.point);
+    c.lever = R_phi * bp.point;
     c.point = x_o + c.lever;
-    c.normal = rotate(phi, bp.normal);
-    c.tangent = rotate(phi, bp.tangent);
+    c.normal = R_phi * bp.normal;
+    c.tangent = R_phi * bp.tangent;
     c.curvature = bp.curvature;
 
-    Vec2 d_theta, d_stroke;
-    fingertipJacobian(q, i, d_theta, d_stroke);
+    const Vec2 d_theta = perp(c.tip);
     // The gap grows when the object moves along n (the tip recedes inside the normal
     // direction) and shrinks when the tip moves along n: G1_i = [G_i n_i; -J_i^T n_i].
     data.G1.col(i).head<2>() = c.normal;

@@ -155,6 +155,10 @@ Vec2 Shape::point(double xi) const {
 BoundaryPoint Shape::boundary(double xi) const {
   Vec2 c, dc, ddc;
   derivatives(xi, c, dc, ddc);
+  return geometry(c, dc, ddc);
+}
+
+BoundaryPoint Shape::geometry(const Vec2& c, const Vec2& dc, const Vec2& ddc) {
   BoundaryPoint b;
   b.point = c;
   b.speed = dc.norm();
@@ -192,8 +196,7 @@ ClosestPoint Shape::closest(const Vec2& p) const {
   return makeClosest(*this, p, best_x);
 }
 
-ClosestPoint Shape::closestNear(const Vec2& p, double xi_hint) const {
-  if (dynamic_cast<const CircleShape*>(this)) return closest(p);  // closed form, cheaper
+ClosestPoint Shape::closestNear(const Vec2& p, double xi_hint, BoundaryPoint* at) const {
   double x = xi_hint;
   Vec2 c, dc, ddc;
   for (int it = 0; it < 8; ++it) {
@@ -202,19 +205,30 @@ ClosestPoint Shape::closestNear(const Vec2& p, double xi_hint) const {
     if (!(fp > 0.0)) break;  // not in the basin of a minimum
     const double step = -dc.dot(c - p) / fp;
     if (!(std::abs(step) < 0.5)) break;
-    x += step;
-    if (std::abs(step) > 1e-12) continue;
-    derivatives(x, c, dc, ddc);
-    if (!(ddc.dot(c - p) + dc.squaredNorm() > 0.0)) break;
+    if (std::abs(step) > 1e-12) {
+      x += step;
+      continue;
+    }
+    // Converged at x (the last step moves c by under 1e-12 |c'|): reuse this evaluation.
     const double depth = (p - c).dot(perp(dc).normalized());
     // Outside, a critical point with p on its outer side is the metric projection onto the
     // convex set, hence unique. Inside, a disc of the smallest radius of curvature rolls freely
     // along the boundary (Blaschke), so a local minimum no deeper than that radius is global.
-    if (depth <= 0.0 || depth <= minCurvatureRadius())
+    if (depth <= 0.0 || depth <= minCurvatureRadius()) {
+      if (at) *at = geometry(c, dc, ddc);
       return {wrap(x), c, depth > 0.0 ? -(p - c).norm() : (p - c).norm()};
+    }
     break;
   }
-  return closest(p);
+  const ClosestPoint global = closest(p);
+  if (at) *at = boundary(global.xi);
+  return global;
+}
+
+ClosestPoint CircleShape::closestNear(const Vec2& p, double, BoundaryPoint* at) const {
+  const ClosestPoint cp = closest(p);  // closed form: no iteration to warm-start
+  if (at) *at = boundary(cp.xi);
+  return cp;
 }
 
 bool Shape::entryAlongLine(const Vec2& origin, const Vec2& dir, double& s, double& xi) const {

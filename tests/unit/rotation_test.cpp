@@ -67,8 +67,8 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(ContactArms, ReconstructTheContactPoint) {
   // c(xi) = -(alpha_n n + alpha_t t) (eq. 25), for random states of every shape.
-  for (auto kind : {test::ShapeKind::kEllipse, test::ShapeKind::kCircle,
-                    test::ShapeKind::kSuperellipse}) {
+  for (auto kind :
+       {test::ShapeKind::kEllipse, test::ShapeKind::kCircle, test::ShapeKind::kSuperellipse}) {
     const RbsfModel model(test::makeCell(kind));
     std::mt19937 rng(21);
     ModelData d(3);

@@ -97,7 +97,11 @@ void printTable(const StateAnalysis& a, const RbsfModel& model) {
 }
 
 int run(int argc, char** argv) {
-  CLI::App app{"rbsf-analyze: the RBSF model's analysis of one state (SI units, radians)"};
+  CLI::App app{"The RBSF model's analysis of one state: contacts, phase-U LCP, phase, "
+               "conditions for turning the part (paper 3), static holding. SI units; angles "
+               "in radians or with a deg suffix.",
+               "rbsf-analyze"};
+  app.footer(kExitStatusHelp);
   Options o;
   app.add_option("--cell", o.cell, "cell YAML file")->required();
   auto* q_opt = app.add_option("--q", o.q, "configuration x,y,phi,theta,l1,...,lm");

@@ -63,9 +63,12 @@ class Shape {
   virtual ClosestPoint closest(const Vec2& p) const;
 
   /// \brief Closest boundary point by Newton's method started at xi_hint; falls back to
-  ///        closest(p) when the local iteration does not converge. Use when the previous
-  ///        contact parameter is known (simulation, tracking).
-  ClosestPoint closestNear(const Vec2& p, double xi_hint) const;
+  ///        closest(p) when the local iteration does not converge or cannot be certified
+  ///        global. Use when the previous contact parameter is known (simulation,
+  ///        tracking). When `at` is given it receives boundary(result.xi), reusing the
+  ///        last evaluation.
+  virtual ClosestPoint closestNear(const Vec2& p, double xi_hint,
+                                   BoundaryPoint* at = nullptr) const;
 
   /// \brief First boundary crossing of the line origin + s * dir (dir a unit vector)
   ///        entering the shape, i.e. the smallest s with origin + s dir on the boundary.
@@ -74,6 +77,9 @@ class Shape {
 
   /// \brief Wrap a parameter into [0, 2 pi).
   static double wrap(double xi);
+
+  /// \brief Tangent, normal, speed and curvature from c, c' and c''.
+  static BoundaryPoint geometry(const Vec2& c, const Vec2& dc, const Vec2& ddc);
 };
 
 /// \brief Ellipse c(xi) = e + (a cos xi, b sin xi), e the geometric centre relative to
@@ -107,6 +113,8 @@ class CircleShape final : public Shape {
   double boundingRadius() const override;
   double minCurvatureRadius() const override { return r_; }
   ClosestPoint closest(const Vec2& p) const override;
+  ClosestPoint closestNear(const Vec2& p, double xi_hint,
+                           BoundaryPoint* at = nullptr) const override;
   double radius() const { return r_; }
   const Vec2& center() const { return center_; }
 

@@ -20,6 +20,11 @@ inline constexpr int kExitBadInput = 2;
 /// \brief Exit status for an internal error.
 inline constexpr int kExitInternal = 1;
 
+/// \brief The exit-status paragraph of every tool's --help.
+inline constexpr const char* kExitStatusHelp =
+    "Exit status: 0 success; 2 bad input (option, value, file or state), with one message "
+    "on stderr; 1 internal error.";
+
 /// \brief Thrown by parseCommandLine() when --help was printed.
 struct HelpPrinted {};
 
