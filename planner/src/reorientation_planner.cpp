@@ -102,18 +102,38 @@ VecQ ReorientationPlanner::checkProblem(const Problem& problem) const {
     throw InputError("the fingers cannot hold the part at rest at the start pose " +
                      poseText(problem.start) +
                      ": no contact forces in the friction cones balance it within the limits");
-  std::string why;
+  // The goal: some base angle at which at least min_touching fingers reach the part
+  // (the tip's line of travel enters it within the stroke), the validity's support test.
   const int n = 181;
+  int most = 0;
   for (int k = 0; k < n; ++k) {
     const double theta =
         cell.base.theta_min + (cell.base.theta_max - cell.base.theta_min) * k / (n - 1);
-    const Placement p = placeFingers(model_, problem.goal, theta);
-    if (p.ok) return q;
-    if (why.empty()) why = p.message;
+    const Vec2 x_o(problem.goal.x, problem.goal.y);
+    const Vec2 dir = rotate(-problem.goal.phi, rotate(theta, Vec2(0.0, 1.0)));
+    int reach = 0;
+    for (const FingerParams& f : cell.fingers) {
+      const Vec2 origin = rotate(-problem.goal.phi, rotate(theta, Vec2(f.r, 0.0)) - x_o);
+      double l = 0.0, xi = 0.0;
+      if (model_.shape().entryAlongLine(origin, dir, l, xi) && l >= f.stroke_min &&
+          l <= f.stroke_max)
+        ++reach;
+    }
+    most = std::max(most, reach);
+    if (reach >= settings_.validity.min_touching) return q;
   }
-  throw InputError("the goal pose " + poseText(problem.goal) +
-                   " is out of the fingers' reach at every base angle in the base range (" + why +
-                   ")");
+  std::string why = "the goal pose " + poseText(problem.goal) + " is out of reach: ";
+  if (most == 0) {
+    why += "no finger";
+  } else {
+    why += "only ";
+    why += std::to_string(most);
+    why += " finger(s)";
+  }
+  why += " can reach the part at any base angle in the base range (";
+  why += std::to_string(settings_.validity.min_touching);
+  why += " needed to support it)";
+  throw InputError(why);
 }
 
 bool ReorientationPlanner::solve(const Problem& problem, Plan& plan) {

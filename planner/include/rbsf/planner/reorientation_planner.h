@@ -75,8 +75,9 @@ class ReorientationPlanner {
 
   /// \brief The start configuration of `problem`, checked: fingers placed by the placement
   ///        rule at start_theta and the part holdable at rest within the limits; the goal
-  ///        reachable: placeFingers succeeds for the goal pose at some base angle within
-  ///        the base range. \throws InputError saying which and why.
+  ///        reachable: at some base angle within the base range at least
+  ///        validity.min_touching fingers' lines of travel enter the part within their
+  ///        strokes. \throws InputError saying which and why.
   VecQ checkProblem(const Problem& problem) const;
 
   /// \brief Search. Returns false (and leaves `plan` empty) only when the planner produced
