@@ -1,9 +1,10 @@
 // One full acceleration-level evaluation (state and tau in; contact points, F_n and
 // accelerations out): forwardDynamicsU for m = 2, 3, 4, 6, 8 fingers, every contact
-// touching, the part at rest on the fingers with a holding-like input.
+// touching, the part at rest on the fingers with a holding-like input. The cells are the
+// test cells of tests/unit/test_support.h (the default part on m fingers).
 #include <benchmark/benchmark.h>
 
-#include <memory>
+#include "../tests/unit/test_support.h"
 
 #include "rbsf/dynamics/forward_dynamics.h"
 #include "rbsf/dynamics/placement.h"
@@ -12,27 +13,9 @@
 namespace rbsf {
 namespace {
 
-Cell benchCell(int m) {
-  Cell c;
-  c.base = {5.0, -0.785398, 0.785398, 400.0};
-  for (int i = 0; i < m; ++i) {
-    FingerParams f;
-    f.r = m == 1 ? 0.0 : -0.20 + 0.40 * i / (m - 1);
-    f.stroke_min = 0.05;
-    f.stroke_max = 0.55;
-    f.mass = 2.0;
-    f.force_limit = 800.0;
-    c.fingers.push_back(f);
-  }
-  c.object.shape = std::make_shared<EllipseShape>(0.30, 0.15, Vec2(-0.10, 0.0));
-  c.object.mass = 24.0;
-  c.object.inertia = 0.675;
-  return c;
-}
-
 void BM_ForwardDynamicsU(benchmark::State& state) {
   const int m = static_cast<int>(state.range(0));
-  const RbsfModel model(benchCell(m));
+  const RbsfModel model(test::makeCell(test::ShapeKind::kEllipse, m));
   const VecQ q = restingConfiguration(model, Pose{0.10, 0.40, 0.05}, 0.1);
   VecQ v = VecQ::Zero(m + 4);
   v[layout::kTheta] = 0.2;

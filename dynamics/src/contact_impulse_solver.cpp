@@ -10,6 +10,10 @@ namespace {
 // systems are solved to ~cond * 1e-16 and the regularised stick blocks have cond ~1e9 / reg.
 constexpr double kCheckTol = 1e-9;
 
+// A reduced system whose smallest LU pivot is below this fraction of the largest is treated
+// as singular (regularisation pivots are ~regularization = 1e-9 of the largest).
+constexpr double kSingularPivot = 1e-6;
+
 constexpr int kMaxLemkeSize = kMaxFingers + kMaxLimitRows + 3 * kMaxFingers;
 
 double sign(double a) { return a > 0.0 ? 1.0 : (a < 0.0 ? -1.0 : 0.0); }
@@ -91,7 +95,20 @@ ImpulseSolvePath ContactImpulseSolver::solve() {
     if (!solveModes()) break;
     if (verifyAndUpdateModes()) return ImpulseSolvePath::kModeGuess;
   }
-  return solveLemke() ? ImpulseSolvePath::kLemke : ImpulseSolvePath::kFailed;
+  if (!solveLemke()) return ImpulseSolvePath::kFailed;
+  // Lemke solved the regularised LCP directly; re-solving its mode set cleans the
+  // null-space component as on the other path (same answer where the problem is regular).
+  lemke_lambda_ = lambda;
+  lemke_y_ = y;
+  const auto lemke_closed = closed;
+  const auto lemke_friction = friction;
+  if (!solveModes() || !verifyAndUpdateModes()) {
+    lambda = lemke_lambda_;
+    y = lemke_y_;
+    closed = lemke_closed;
+    friction = lemke_friction;
+  }
+  return ImpulseSolvePath::kLemke;
 }
 
 bool ContactImpulseSolver::solveModes() {
@@ -123,12 +140,20 @@ bool ContactImpulseSolver::solveModes() {
   // (the least-squares, least-norm impulses) unchanged to O(eps). W maps the null space
   // to zero, so the motion is the same either way; only the reported forces and the cone
   // checks see the difference.
+  // Only a (nearly) singular K has a null space to clean; it shows as a pivot of order eps.
   K0_ = K_;
   if (!luFactor(K_, perm_, nvar_)) return false;
   luSolve(K_, perm_, rhs_, x_, nvar_);
-  for (int k = 0; k < nvar_; ++k) K0_(k, k) -= eps_;
-  rhs_.noalias() = K0_ * x_;
-  luSolve(K_, perm_, rhs_, x_, nvar_);
+  double pivot_min = INFINITY, pivot_max = 0.0;
+  for (int k = 0; k < nvar_; ++k) {
+    pivot_min = std::min(pivot_min, std::abs(K_(k, k)));
+    pivot_max = std::max(pivot_max, std::abs(K_(k, k)));
+  }
+  if (pivot_min < kSingularPivot * pivot_max) {
+    for (int k = 0; k < nvar_; ++k) K0_(k, k) -= eps_;
+    rhs_.noalias() = K0_ * x_;
+    luSolve(K_, perm_, rhs_, x_, nvar_);
+  }
   if (!x_.allFinite()) return false;
   lambda.setZero();
   for (int k = 0; k < nvar_; ++k) {

@@ -1,6 +1,7 @@
 #include "rbsf/dynamics/holding.h"
 
 #include "rbsf/dynamics/small_solvers.h"
+#include "rbsf/dynamics/stick_dynamics.h"
 
 namespace rbsf {
 
@@ -27,15 +28,9 @@ HoldingSolution holdingTorques(const RbsfModel& model, const VecQ& q, const Mode
 
   // Rows of G lambda >= h: cones (3 per contact), then tau = Q_r - N_r lambda in
   // [-limit, limit] as  N_r lambda >= Q_r - limit  and  -N_r lambda >= -Q_r - limit.
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(3 * m + 2 * nu, 2 * m);
+  Eigen::MatrixXd G(3 * m + 2 * nu, 2 * m);
   Eigen::VectorXd h = Eigen::VectorXd::Zero(3 * m + 2 * nu);
-  for (int i = 0; i < m; ++i) {
-    G(3 * i, i) = 1.0;
-    G(3 * i + 1, i) = mu;
-    G(3 * i + 1, m + i) = -1.0;
-    G(3 * i + 2, i) = mu;
-    G(3 * i + 2, m + i) = 1.0;
-  }
+  G.topRows(3 * m) = frictionConeRows(m, mu);
   G.block(3 * m, 0, nu, 2 * m) = N_r;
   h.segment(3 * m, nu) = Q_r - limit;
   G.block(3 * m + nu, 0, nu, 2 * m) = -N_r;

@@ -1,5 +1,6 @@
 #include "rbsf/dynamics/simulator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -13,6 +14,9 @@ using layout::kPhi;
 using layout::kTheta;
 using layout::kX;
 using layout::kY;
+
+// Gap and anchor errors below this need no correction [m].
+constexpr double kDriftFloor = 1e-13;
 
 /// Configuration index and range of the mechanism coordinate k (0: theta, k >= 1: stroke).
 void limitOf(const Cell& cell, int k, int& index, double& lo, double& hi) {
@@ -100,19 +104,25 @@ Simulator::Simulator(const RbsfModel& model, const SimulatorSettings& s)
 int Simulator::assembleRows(const SimState& state, SimulatorWorkspace& ws) const {
   const Cell& cell = model_.cell();
   const int m = model_.numFingers();
-  const double act = settings_.activation_distance;
+  const double act = settings_.activation_distance, h = settings_.time_step;
+  // A row enters the step when its gap, or the gap it would reach within the step moving
+  // freely, is within the activation distance: fast approaches cannot tunnel through.
+  auto active = [&](double gap, double free_rate) {
+    return gap + h * std::min(0.0, free_rate) <= act;
+  };
   int nc = 0;
   for (int i = 0; i < m; ++i)
-    if (ws.data.contacts[i].gap <= act) ws.contact_finger[nc++] = i;
+    if (active(ws.data.contacts[i].gap, ws.data.G1.col(i).dot(ws.v_free)))
+      ws.contact_finger[nc++] = i;
   int nl = 0;
   ws.gap.resize(nc + 2 * (m + 1));
   for (int k = 0; k <= m; ++k) {
     int index;
     double lo, hi;
     limitOf(cell, k, index, lo, hi);
-    const double q = state.q[index];
-    if (q - lo <= act) ws.limit_index[nl] = 2 * k, ws.gap[nc + nl++] = q - lo;
-    if (hi - q <= act) ws.limit_index[nl] = 2 * k + 1, ws.gap[nc + nl++] = hi - q;
+    const double q = state.q[index], rate = ws.v_free[index];
+    if (active(q - lo, rate)) ws.limit_index[nl] = 2 * k, ws.gap[nc + nl++] = q - lo;
+    if (active(hi - q, -rate)) ws.limit_index[nl] = 2 * k + 1, ws.gap[nc + nl++] = hi - q;
   }
   const int nu = nc + nl, nr = nu + nc;
   ws.solver.resize(nc, nl);
@@ -134,7 +144,6 @@ int Simulator::assembleRows(const SimState& state, SimulatorWorkspace& ws) const
   ws.solver.D.noalias() = ws.W.transpose() * ws.MinvW;
   ws.solver.b.noalias() = ws.W.transpose() * ws.v_free;
 
-  const double h = settings_.time_step;
   const FrictionParams& fr = cell.friction;
   for (int u = 0; u < nu; ++u) {
     ws.open_row[u] = ws.gap[u] > settings_.contact_tolerance;
@@ -176,7 +185,7 @@ void Simulator::correctDrift(const SimState& state, SimulatorWorkspace& ws) cons
   for (int r = 0; r < nc; ++r) {
     const int i = ws.contact_finger[r];
     if (ws.open_row[r] || !s.closed[r] || !state.anchored[i] ||
-        std::abs(s.y[nu + r]) > settings_.slip_tolerance)
+        s.friction[r] != FrictionMode::kStick)
       continue;
     const ContactFrame& f = ws.data.contacts[i];
     const Vec2& a = state.anchor[i];
@@ -185,7 +194,8 @@ void Simulator::correctDrift(const SimState& state, SimulatorWorkspace& ws) cons
     ws.ec[n++] = f.tangent.dot(stuck - f.tip);
   }
   ws.dq.setZero(model_.configDim());
-  if (n == 0) return;
+  // Errors at rounding level need no correction (the common case at rest).
+  if (n == 0 || ws.ec.head(n).cwiseAbs().maxCoeff() < kDriftFloor) return;
   ws.Dc.resize(n, n);
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b) ws.Dc(a, b) = s.D(ws.corr_row[a], ws.corr_row[b]);
@@ -212,8 +222,11 @@ void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws,
   const int nc = assembleRows(state, ws);
   ContactImpulseSolver& s = ws.solver;
   const int nu = s.numUnilateral();
+  // Touching: in the closed set of the solution, or resting on the part without load
+  // (gap at the end of the step, to second order, within the contact tolerance).
   auto classify = [&](int r) {
-    if (!s.closed[r]) return ContactMode::kSeparated;
+    const double end_gap = (ws.open_row[r] ? 0.0 : ws.gap[r]) + h * s.y[r];
+    if (!s.closed[r] && end_gap > settings_.contact_tolerance) return ContactMode::kSeparated;
     return std::abs(s.y[nu + r]) > settings_.slip_tolerance ? ContactMode::kSlide
                                                             : ContactMode::kStick;
   };
@@ -262,10 +275,13 @@ void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws,
     const int r = row_of[i];
     const ContactMode mode = r < 0 ? ContactMode::kSeparated : classify(r);
     const double slip = mode == ContactMode::kSeparated ? 0.0 : s.y[nu + r];
-    // A contact that starts sticking is anchored at the material point under its tip.
-    if (mode == ContactMode::kStick && !state.anchored[i])
-      state.anchor[i] = rotate(-phi_start, d.contacts[i].lever);
-    state.anchored[i] = mode == ContactMode::kStick;
+    // A contact held inside its cone (y_t = 0 exactly) is anchored at the material point
+    // under its tip. One at the cone's edge creeps (by less than the slip tolerance, so it
+    // still counts as sticking): correcting it back to an anchor would fight the friction
+    // law, so it is re-anchored once it holds again.
+    const bool held = r >= 0 && s.closed[r] && s.friction[r] == FrictionMode::kStick;
+    if (held && !state.anchored[i]) state.anchor[i] = rotate(-phi_start, d.contacts[i].lever);
+    state.anchored[i] = held;
     state.mode[i] = mode;
     state.slip[i] = slip;
     state.friction_guess[i] = r < 0 ? FrictionMode::kStick : s.friction[r];

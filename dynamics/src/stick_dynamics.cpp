@@ -57,15 +57,7 @@ RowSystem buildRows(const RbsfModel& model, const VecQ& q, const VecQ& v, const 
 
 }  // namespace
 
-StickSolution solvePhaseC(const RbsfModel& model, const VecQ& q, const VecQ& v, const VecU& tau,
-                          ModelData& data) {
-  const int m = model.numFingers();
-  const double mu = model.cell().friction.mu_static;
-  int rows[kMaxFingers];
-  for (int i = 0; i < m; ++i) rows[i] = i;
-  const RowSystem s = buildRows(model, q, v, tau, data, rows, m, rows, m);
-
-  // Cone rows on lambda = [f_n; f_t]: f_n >= 0, mu f_n - f_t >= 0, mu f_n + f_t >= 0.
+Eigen::MatrixXd frictionConeRows(int m, double mu) {
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(3 * m, 2 * m);
   for (int i = 0; i < m; ++i) {
     G(3 * i, i) = 1.0;
@@ -74,6 +66,18 @@ StickSolution solvePhaseC(const RbsfModel& model, const VecQ& q, const VecQ& v, 
     G(3 * i + 2, i) = mu;
     G(3 * i + 2, m + i) = 1.0;
   }
+  return G;
+}
+
+StickSolution solvePhaseC(const RbsfModel& model, const VecQ& q, const VecQ& v, const VecU& tau,
+                          ModelData& data) {
+  const int m = model.numFingers();
+  const double mu = model.cell().friction.mu_static;
+  int rows[kMaxFingers];
+  for (int i = 0; i < m; ++i) rows[i] = i;
+  const RowSystem s = buildRows(model, q, v, tau, data, rows, m, rows, m);
+
+  const Eigen::MatrixXd G = frictionConeRows(m, mu);
   StickSolution out;
   Eigen::VectorXd lambda;
   out.feasible = leastNormInPolyhedron(s.K, -s.r, G, Eigen::VectorXd::Zero(3 * m), lambda,

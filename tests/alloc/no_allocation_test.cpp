@@ -1,12 +1,15 @@
 // Hot paths allocate nothing: mallocs are counted around each one after warm-up.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <vector>
 
 #include "../unit/test_support.h"
 #include "malloc_counter.h"
 #include "rbsf/dynamics/forward_dynamics.h"
+#include "rbsf/dynamics/holding.h"
+#include "rbsf/dynamics/simulator.h"
 #include "rbsf/dynamics/small_solvers.h"
 
 namespace rbsf {
@@ -55,6 +58,43 @@ TEST_F(NoAllocation, ForwardDynamicsEvaluation) {
     test::MallocCounter counter;
     for (int k = 0; k < 100; ++k) forwardDynamicsU(model, q, v, tau, data);
     EXPECT_EQ(counter.count(), 0) << "m = " << m;
+  }
+}
+
+TEST_F(NoAllocation, SimulatorStep) {
+  // Held, then tilted until the part slides off: sticking, sliding, separating and limit
+  // rows all pass through the counted steps, on both solver paths.
+  for (int m : {3, 6}) {
+    for (int iterations : {8, 0}) {
+      const RbsfModel model(test::makeCell(test::ShapeKind::kEllipse, m));
+      const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.40, 0.0}, 0.0);
+      ModelData d(m);
+      model.updateContacts(q0, d);
+      const HoldingSolution hold = holdingTorques(model, q0, d);
+      ASSERT_TRUE(hold.feasible);
+      SimulatorSettings settings;
+      settings.max_mode_iterations = iterations;  // 0: Lemke on every step
+      const Simulator sim(model, settings);
+      SimulatorWorkspace ws(m);
+      SimState s(q0, VecQ::Zero(m + 4));
+      StepReport report;
+      VecU tau = hold.tau;
+      sim.step(s, tau, ws, &report);  // warm-up: global closest-point search
+      int phases[4] = {0, 0, 0, 0};
+      test::MallocCounter counter;
+      for (int k = 0; k < 3000; ++k) {
+        tau = hold.tau;
+        tau[layout::kTauTheta] += 2e4 * (0.5 * std::max(0.0, s.t - 0.5) - s.q[layout::kTheta]) -
+                                  2e3 * s.v[layout::kTheta];
+        sim.step(s, tau, ws, &report);
+        ++phases[static_cast<int>(report.phase)];
+      }
+      EXPECT_EQ(counter.count(), 0) << "m = " << m << ", iterations = " << iterations;
+      EXPECT_GT(phases[static_cast<int>(Phase::kC)], 0) << m;
+      EXPECT_GT(phases[static_cast<int>(Phase::kU)] + phases[static_cast<int>(Phase::kUnsupported)],
+                0)
+          << m;
+    }
   }
 }
 

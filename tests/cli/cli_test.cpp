@@ -10,6 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -149,6 +150,168 @@ std::vector<BadCase> badCases() {
 
 INSTANTIATE_TEST_SUITE_P(Cases, AnalyzeBadInput, ::testing::ValuesIn(badCases()),
                          [](const auto& info) { return std::string(info.param.name); });
+
+// ---------------------------------------------------------------------------------------------
+// rbsf-simulate
+
+const std::string kSimulate = RBSF_SIMULATE_EXE;
+const std::string kHold = "23.544,39.8447,98.0387,156.4167";  // holding tau at 0.1,0.40,0
+
+std::string simulateArgs(const std::string& controls, const std::string& extra = "") {
+  return kSimulate + " --cell " + kCells + "default.yaml --start 0.1,0.40,0 --controls " +
+         controls + " " + extra;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (std::size_t nl; (nl = text.find('\n', start)) != std::string::npos; start = nl + 1)
+    out.push_back(text.substr(start, nl - start));
+  return out;
+}
+
+std::vector<std::string> fields(const std::string& line) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (std::size_t c; (c = line.find(',', start)) != std::string::npos; start = c + 1)
+    out.push_back(line.substr(start, c - start));
+  out.push_back(line.substr(start));
+  return out;
+}
+
+TEST(Simulate, ExampleControlsHoldTiltAndSlide) {
+  const Result r = run(simulateArgs(kCells + "default_controls.csv"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  for (const char* key : {"final pose", "final mechanism", "phases", "min f_n", "max |gap|"})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
+  // Held first (phase C for the whole first second and more), then sliding (U).
+  const std::size_t phases = r.out.find("phases");
+  ASSERT_NE(phases, std::string::npos);
+  EXPECT_EQ(r.out.find("phases               C "), phases) << r.out;
+  EXPECT_NE(r.out.find(", U ", phases), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2500 steps"), std::string::npos) << r.out;
+}
+
+TEST(Simulate, CsvTrajectoryHasOneRowPerStepAndTheInputs) {
+  const std::string controls =
+      writeTemp("sim_ok.csv", "duration,tau_theta,tau_1,tau_2,tau_3\n0.2," + kHold + "\n");
+  const std::string out = ::testing::TempDir() + std::to_string(getpid()) + "_traj.csv";
+  const Result r = run(simulateArgs(controls, "--dt 0.002 --out " + out));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::vector<std::string> rows = lines(slurp(out));
+  ASSERT_EQ(rows.size(), 101u);  // header + 0.2 s / 2 ms
+  EXPECT_EQ(rows[0],
+            "t,x,y,phi,theta,l1,l2,l3,dx,dy,dphi,dtheta,dl1,dl2,dl3,tau_theta,tau_1,tau_2,tau_3,"
+            "fn_1,fn_2,fn_3,phase");
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const std::vector<std::string> f = fields(rows[k]);
+    ASSERT_EQ(f.size(), 23u) << rows[k];
+    EXPECT_NEAR(std::stod(f[0]), 0.002 * k, 1e-12);
+    EXPECT_DOUBLE_EQ(std::stod(f[15]), 23.544);
+    EXPECT_DOUBLE_EQ(std::stod(f[18]), 156.4167);
+    EXPECT_EQ(f[22], "C") << "held at rest: " << rows[k];
+    EXPECT_GT(std::stod(f[21]), 100.0) << rows[k];  // the right finger carries most
+  }
+  EXPECT_NE(r.out.find("(100 samples)"), std::string::npos) << r.out;
+}
+
+TEST(Simulate, JsonTrajectoryMatchesCsvAndAnglesTakeDegrees) {
+  const std::string controls =
+      writeTemp("sim_json.csv", "duration,tau_theta,tau_1,tau_2,tau_3\n0.05," + kHold +
+                                    "\n0.05,25," + kHold.substr(kHold.find(',') + 1) + "\n");
+  const std::string csv = ::testing::TempDir() + std::to_string(getpid()) + "_t.csv";
+  const std::string json = ::testing::TempDir() + std::to_string(getpid()) + "_t.json";
+  ASSERT_EQ(run(simulateArgs(controls, "--out " + csv)).status, 0);
+  const Result r = run(kSimulate + " --cell " + kCells + "default.yaml --start 0.1,0.40,0deg" +
+                       " --theta 0deg --controls " + controls + " --out " + json);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(json));
+  ASSERT_EQ(j["samples"].size(), 100u);
+  EXPECT_EQ(j["fingers"], 3);
+  const std::vector<std::string> rows = lines(slurp(csv));
+  ASSERT_EQ(rows.size(), 101u);
+  // Same run, same bits: the CSV's 17 significant digits read back to the JSON's doubles.
+  const std::vector<std::string> last = fields(rows.back());
+  const auto& s = j["samples"].back();
+  EXPECT_EQ(std::stod(last[0]), s["t"].get<double>());
+  for (int k = 0; k < 7; ++k) {
+    EXPECT_EQ(std::stod(last[1 + k]), s["q"][k].get<double>()) << k;
+    EXPECT_EQ(std::stod(last[8 + k]), s["v"][k].get<double>()) << k;
+  }
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(std::stod(last[19 + i]), s["f_n"][i].get<double>());
+  EXPECT_EQ(s["tau"][0].get<double>(), 25.0);
+  EXPECT_EQ(last[22], s["phase"].get<std::string>());
+}
+
+struct SimulateBadCase {
+  const char* name;
+  std::string args;     // after "rbsf-simulate"
+  const char* message;  // must appear in stderr
+};
+
+class SimulateBadInput : public ::testing::TestWithParam<SimulateBadCase> {};
+
+TEST_P(SimulateBadInput, ExitsWithStatus2NamesTheCulpritAndWritesNothing) {
+  const std::string out =
+      ::testing::TempDir() + std::to_string(getpid()) + "_bad_" + GetParam().name + ".csv";
+  std::remove(out.c_str());
+  const Result r = run(kSimulate + " " + GetParam().args + " --out " + out);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find(GetParam().message), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << "no partial output: " << r.out;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one message: " << r.err;
+  EXPECT_FALSE(std::ifstream(out).good()) << "no output file";
+}
+
+std::vector<SimulateBadCase> simulateBadCases() {
+  const std::string head = "duration,tau_theta,tau_1,tau_2,tau_3\n";
+  auto controls = [&](const char* name, const std::string& text) {
+    return " --controls " + writeTemp(std::string("ctl_") + name + ".csv", text);
+  };
+  const std::string cell = "--cell " + kCells + "default.yaml ";
+  const std::string start = cell + "--start 0.1,0.40,0";
+  const std::string good = controls("good", head + "0.1," + kHold + "\n");
+  return {
+      {"missing_controls_file", start + " --controls /nonexistent_ctl.csv", "/nonexistent_ctl.csv"},
+      {"no_controls_option", start, "--controls"},
+      {"header_for_other_m", start + controls("m2", "duration,tau_theta,tau_1,tau_2\n0.1,1,2,3\n"),
+       "ctl_m2.csv:1: header must be 'duration,tau_theta,tau_1,tau_2,tau_3'"},
+      {"empty_controls", start + controls("empty", ""), "empty controls file"},
+      {"header_only", start + controls("header_only", head), "no segments"},
+      {"non_numeric", start + controls("abc", head + "0.1," + kHold + "\n0.2,1,2,abc,4\n"),
+       "ctl_abc.csv:3: column 'tau_2': 'abc' is not a number"},
+      {"short_line", start + controls("short", head + "0.1,1,2,3\n"),
+       "ctl_short.csv:2: expected 5 values"},
+      {"zero_duration", start + controls("zero", head + "0," + kHold + "\n"),
+       "ctl_zero.csv:2: column 'duration': duration must be positive"},
+      {"negative_duration", start + controls("neg", head + "-1," + kHold + "\n"),
+       "column 'duration'"},
+      {"infinite_value", start + controls("inf", head + "0.1,inf,1,2,3\n"), "column 'tau_theta'"},
+      {"shorter_than_dt", start + controls("tiny", head + "0.0001," + kHold + "\n"),
+       "shorter than the time step"},
+      {"over_force_limit", start + controls("limit", head + "0.1,0,0,900,0\n"),
+       "ctl_limit.csv:2: column 'tau_2'"},
+      {"bad_dt", start + good + " --dt 0", "--dt"},
+      {"non_numeric_dt", start + good + " --dt abc", "--dt"},
+      {"unreachable_start", cell + "--start 0.1,1.4,0" + good, "--start: finger 1"},
+      {"short_start", cell + "--start 0.1,0.4" + good, "--start"},
+      {"theta_out_of_range", start + " --theta 60deg" + good, "--theta"},
+      {"missing_cell", "--cell /nonexistent.yaml --start 0.1,0.40,0" + good, "/nonexistent.yaml"},
+  };
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, SimulateBadInput, ::testing::ValuesIn(simulateBadCases()),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Simulate, UnknownOutputExtensionIsBadInputBeforeAnyWork) {
+  const std::string out = ::testing::TempDir() + std::to_string(getpid()) + "_traj.txt";
+  const Result r = run(simulateArgs(kCells + "default_controls.csv", "--out " + out));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--out"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(".csv or .json"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::ifstream(out).good());
+}
 
 }  // namespace
 

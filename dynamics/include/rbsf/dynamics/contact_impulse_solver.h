@@ -117,7 +117,7 @@ class ContactImpulseSolver {
   double eps_ = 0.0;
   MatII K_, K0_;  // reduced system of the mode set: LU factors of K + eps I, and K
   std::array<int, kMaxImpulseRows> perm_{};
-  VecI rhs_, x_;
+  VecI rhs_, x_, lemke_lambda_, lemke_y_;
   std::array<int, kMaxImpulseRows> var_row_{};  // full row of each reduced variable
   int nvar_ = 0;
   LemkeWorkspace lemke_;

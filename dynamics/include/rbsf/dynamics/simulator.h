@@ -41,8 +41,9 @@
 /// contacts are kinematically dependent) only meet the regularisation's null space,
 /// which W maps to zero: the correction stays the least-squares one.
 ///
-/// Reports, per contact: mode (separated if inactive or leaving with no impulse; sliding
-/// if its slip |y_t| > slip_tolerance; sticking otherwise), forces f = lambda / h [N]
+/// Reports, per contact: mode (separated if inactive, or open in the solution with its
+/// end-of-step gap g + h y_n above contact_tolerance; otherwise sliding if its slip
+/// |y_t| > slip_tolerance, sticking if not), forces f = lambda / h [N]
 /// (the step's average), the gap at the start of the step. Phase (MODEL.md, paper 2.2)
 /// from the number s of sticking contacts among the touching ones: C if s >= 2, P if
 /// s = 1, U if s = 0, unsupported when none touches.

@@ -10,6 +10,11 @@
 
 namespace rbsf {
 
+/// \brief Friction cones as linear inequalities G lambda >= 0 on lambda = [F_n; F_t]
+///        (m normal then m tangential components): per contact f_n >= 0,
+///        mu f_n - f_t >= 0 and mu f_n + f_t >= 0 (the two edges of eq. 7). 3m x 2m.
+Eigen::MatrixXd frictionConeRows(int m, double mu);
+
 /// \brief Result of solvePhaseC() or solvePhaseP().
 struct StickSolution {
   bool feasible = false;  ///< forces found inside every friction cone, F_n >= 0

@@ -1,0 +1,128 @@
+/// \file
+/// \brief Trajectory output (see trajectory_writer.h).
+
+#include "rbsf/tools/trajectory_writer.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "rbsf/dynamics/errors.h"
+#include "rbsf/tools/cli_values.h"
+#include "rbsf/tools/tool_main.h"
+
+namespace rbsf::tools {
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() > suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+void number(std::ostream& out, double x) {
+  if (!std::isfinite(x)) throw std::runtime_error("trajectory holds a non-finite number");
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  out << buf;
+}
+
+}  // namespace
+
+TrajectoryWriter::TrajectoryWriter(std::string path, int m, const std::string& what)
+    : path_(std::move(path)), m_(m) {
+  const std::string ext = lower(path_);
+  if (endsWith(ext, ".csv")) {
+    format_ = Format::kCsv;
+  } else if (endsWith(ext, ".json")) {
+    format_ = Format::kJson;
+  } else {
+    throw InputError(what + ": '" + path_ + "' must end in .csv or .json (the output format)");
+  }
+}
+
+std::string TrajectoryWriter::csvHeader(int m) {
+  std::string h = "t,x,y,phi,theta";
+  for (int i = 1; i <= m; ++i) h += ",l" + std::to_string(i);
+  h += ",dx,dy,dphi,dtheta";
+  for (int i = 1; i <= m; ++i) h += ",dl" + std::to_string(i);
+  h += ",tau_theta";
+  for (int i = 1; i <= m; ++i) h += ",tau_" + std::to_string(i);
+  for (int i = 1; i <= m; ++i) h += ",fn_" + std::to_string(i);
+  return h + ",phase";
+}
+
+void TrajectoryWriter::writeCsv(std::ostream& out) const {
+  out << csvHeader(m_) << "\n";
+  for (const TrajectorySample& s : samples_) {
+    number(out, s.t);
+    for (const auto* v : {&s.q, &s.v}) {
+      for (int k = 0; k < v->size(); ++k) out << ',', number(out, (*v)[k]);
+    }
+    for (int k = 0; k < s.tau.size(); ++k) out << ',', number(out, s.tau[k]);
+    for (int k = 0; k < s.f_n.size(); ++k) out << ',', number(out, s.f_n[k]);
+    out << ',' << toString(s.phase) << "\n";
+  }
+}
+
+void TrajectoryWriter::writeJson(std::ostream& out) const {
+  nlohmann::json samples = nlohmann::json::array();
+  for (const TrajectorySample& s : samples_) {
+    samples.push_back({{"t", s.t},
+                       {"q", vectorJson(s.q)},
+                       {"v", vectorJson(s.v)},
+                       {"tau", vectorJson(s.tau)},
+                       {"f_n", vectorJson(s.f_n)},
+                       {"phase", std::string(toString(s.phase))}});
+  }
+  const nlohmann::json doc = {{"columns",
+                               {{"t", "time at the end of the step [s]"},
+                                {"q", configLayout(m_, false) + " [m, rad]"},
+                                {"v", configLayout(m_, true) + " [m/s, rad/s]"},
+                                {"tau", "tau_theta [N m], tau_1..tau_m [N], held over the step"},
+                                {"f_n", "normal force per contact over the step [N]"},
+                                {"phase", "C, P, U or unsupported (MODEL.md)"}}},
+                              {"fingers", m_},
+                              {"samples", samples}};
+  requireFinite(doc, "trajectory");
+  out << doc.dump(1) << "\n";
+}
+
+void TrajectoryWriter::commit() const {
+  // Format everything first (a non-finite value stops here, before any file exists).
+  std::ostringstream text;
+  if (format_ == Format::kCsv) {
+    writeCsv(text);
+  } else {
+    writeJson(text);
+  }
+  const std::string tmp = path_ + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError("--out: cannot write '" + path_ + "'");
+    out << text.str();
+    out.flush();
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw InputError("--out: cannot write '" + path_ + "'");
+    }
+  }
+  if (std::rename(tmp.c_str(), path_.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw InputError("--out: cannot move the output into place at '" + path_ + "'");
+  }
+}
+
+}  // namespace rbsf::tools

@@ -1,0 +1,209 @@
+// rbsf-simulate: forward simulation of a cell under a piecewise-constant input schedule,
+// through stick, slip, separation and renewed contact (rbsf/dynamics/simulator.h). The part
+// starts at rest on the fingers placed by the placement rule.
+//
+// Exit status: 0 success; 2 bad input (cell, start pose, controls file, option value,
+// output name), with one message naming the culprit and no output file; 1 internal error.
+#include <CLI/CLI.hpp>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/simulator.h"
+#include "rbsf/tools/cli_values.h"
+#include "rbsf/tools/controls_file.h"
+#include "rbsf/tools/tool_main.h"
+#include "rbsf/tools/trajectory_writer.h"
+
+namespace rbsf::tools {
+namespace {
+
+constexpr double kMaxTimeStep = 0.1;   // [s]: beyond this the contact model is meaningless
+constexpr int kMaxPhasesPrinted = 40;  // longer phase sequences are summarised
+
+struct Options {
+  std::string cell, start, theta = "0", controls, dt = "0.001", out;
+};
+
+/// Limits of the cell on tau, checked per segment (inputs beyond them are not a plan).
+void checkLimits(const RbsfModel& model, const ControlSchedule& schedule) {
+  const Cell& cell = model.cell();
+  for (const ControlSegment& seg : schedule.segments()) {
+    const std::string where = schedule.label() + ":" + std::to_string(seg.line) + ": column ";
+    if (std::abs(seg.tau[layout::kTauTheta]) > cell.base.torque_limit)
+      throw InputError(where + "'tau_theta': " + std::to_string(seg.tau[layout::kTauTheta]) +
+                       " N m exceeds the base torque limit " +
+                       std::to_string(cell.base.torque_limit) + " N m");
+    for (int i = 0; i < model.numFingers(); ++i) {
+      const double f = seg.tau[layout::fingerForce(i)];
+      if (std::abs(f) > cell.fingers[i].force_limit)
+        throw InputError(where + "'tau_" + std::to_string(i + 1) + "': " + std::to_string(f) +
+                         " N exceeds finger " + std::to_string(i + 1) + "'s force limit " +
+                         std::to_string(cell.fingers[i].force_limit) + " N");
+    }
+  }
+}
+
+/// Steps of each segment: the segment boundaries rounded to the step grid, so rounding
+/// never accumulates over many segments.
+std::vector<long> stepsPerSegment(const ControlSchedule& schedule, double h) {
+  std::vector<long> steps;
+  double end = 0.0;
+  long done = 0;
+  for (const ControlSegment& seg : schedule.segments()) {
+    end += seg.duration;
+    const long upto = std::lround(end / h);
+    if (upto <= done)
+      throw InputError(schedule.label() + ":" + std::to_string(seg.line) +
+                       ": column 'duration': " + std::to_string(seg.duration) +
+                       " s is shorter than the time step " + std::to_string(h) + " s");
+    steps.push_back(upto - done);
+    done = upto;
+  }
+  return steps;
+}
+
+struct Summary {
+  std::vector<std::pair<Phase, long>> phases;  // runs of equal phase, in steps
+  double min_fn = INFINITY, min_fn_t = 0.0;
+  int min_fn_contact = -1;
+  double max_gap = 0.0;
+  bool touched = false;
+  std::array<bool, kMaxFingers> was_touching{};
+
+  void add(const StepReport& r, double t, int m) {
+    if (phases.empty() || phases.back().first != r.phase) phases.emplace_back(r.phase, 0);
+    ++phases.back().second;
+    for (int i = 0; i < m; ++i) {
+      const ContactStepReport& c = r.contacts[i];
+      const bool touching = c.mode != ContactMode::kSeparated;
+      if (touching) {
+        touched = true;
+        if (c.f_n < min_fn) min_fn = c.f_n, min_fn_t = t, min_fn_contact = i;
+        // The gap is taken at the start of the step: a contact touching down within the
+        // step started it open, so only contacts touching on both sides count.
+        if (was_touching[i]) max_gap = std::max(max_gap, std::abs(c.gap));
+      }
+      was_touching[i] = touching;
+    }
+  }
+};
+
+void printSummary(const Summary& s, const SimState& state, const RbsfModel& model, double h,
+                  const Options& o, long steps, std::size_t samples) {
+  const int m = model.numFingers();
+  const double deg = 180.0 / M_PI;
+  std::printf("rbsf-simulate: %s, %d fingers, %.6g s in %ld steps of %.6g s\n", o.cell.c_str(), m,
+              state.t, steps, h);
+  std::printf("final pose           x %.6f m, y %.6f m, phi %.6f rad (%.3f deg)\n",
+              state.q[layout::kX], state.q[layout::kY], state.q[layout::kPhi],
+              state.q[layout::kPhi] * deg);
+  std::printf("final mechanism      theta %.6f rad (%.3f deg), strokes", state.q[layout::kTheta],
+              state.q[layout::kTheta] * deg);
+  for (int i = 0; i < m; ++i) std::printf(" %.6f", state.q[layout::stroke(i)]);
+  std::printf(" m\nphases              ");
+  const int shown = std::min<int>(static_cast<int>(s.phases.size()), kMaxPhasesPrinted);
+  for (int k = 0; k < shown; ++k)
+    std::printf("%s %s %.3f s", k ? "," : "", std::string(toString(s.phases[k].first)).c_str(),
+                s.phases[k].second * h);
+  if (shown < static_cast<int>(s.phases.size()))
+    std::printf(", ... (%zu more phase changes)", s.phases.size() - shown);
+  std::printf("\n");
+  if (s.touched) {
+    std::printf("min f_n              %.6g N (contact %d at t = %.3f s)\n", s.min_fn,
+                s.min_fn_contact + 1, s.min_fn_t);
+    std::printf("max |gap|            %.3g m (touching contacts)\n", s.max_gap);
+  } else {
+    std::printf("min f_n              none: no contact touched\n");
+    std::printf("max |gap|            none: no contact touched\n");
+  }
+  if (!o.out.empty())
+    std::printf("output               %s (%zu samples)\n", o.out.c_str(), samples);
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{
+      "rbsf-simulate: simulate a cell under piecewise-constant inputs, the part starting at "
+      "rest on the fingers (SI units; angles in radians or with a deg suffix)"};
+  Options o;
+  app.add_option("--cell", o.cell, "cell YAML file")->required();
+  app.add_option("--start", o.start, "start pose of the part x,y,phi; fingers placed")->required();
+  app.add_option("--theta", o.theta, "start base angle (default 0)");
+  app.add_option("--controls", o.controls,
+                 "CSV: header duration,tau_theta,tau_1..tau_m, one segment per line")
+      ->required();
+  app.add_option("--dt", o.dt, "time step [s] (default 0.001)");
+  app.add_option("--out", o.out, "write the sampled trajectory (.csv or .json)");
+  parseCommandLine(app, argc, argv);
+
+  const RbsfModel model(loadCell(o.cell));
+  const int m = model.numFingers();
+  const Pose pose = parsePose(o.start, "--start");
+  const double theta = parseAngle(o.theta, "--theta");
+  const BaseParams& base = model.cell().base;
+  if (theta < base.theta_min || theta > base.theta_max)
+    throw InputError("--theta: " + std::to_string(theta) + " rad is outside the base range [" +
+                     std::to_string(base.theta_min) + ", " + std::to_string(base.theta_max) +
+                     "] rad");
+  const double h = parseNumber(o.dt, "--dt");
+  if (!(h > 0.0 && h <= kMaxTimeStep))
+    throw InputError("--dt: must be in (0, " + std::to_string(kMaxTimeStep) + "] s, got " + o.dt);
+  std::unique_ptr<TrajectoryWriter> writer;
+  if (!o.out.empty()) writer = std::make_unique<TrajectoryWriter>(o.out, m);
+  const ControlSchedule schedule = ControlSchedule::load(o.controls, m);
+  checkLimits(model, schedule);
+  const std::vector<long> steps = stepsPerSegment(schedule, h);
+  VecQ q0;
+  try {
+    q0 = restingConfiguration(model, pose, theta);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--start: ") + e.what());
+  }
+
+  SimulatorSettings settings;
+  settings.time_step = h;
+  const Simulator sim(model, settings);
+  SimulatorWorkspace ws(m);
+  SimState state(q0, VecQ::Zero(m + 4));
+  StepReport report;
+  Summary summary;
+  TrajectorySample sample;
+  long total = 0;
+  for (std::size_t j = 0; j < steps.size(); ++j) {
+    const VecU tau = schedule.segments()[j].tau;
+    for (long k = 0; k < steps[j]; ++k, ++total) {
+      sim.step(state, tau, ws, &report);
+      if (!state.q.allFinite() || !state.v.allFinite())
+        throw std::runtime_error("the simulation diverged at t = " + std::to_string(state.t) +
+                                 " s");
+      summary.add(report, state.t, m);
+      if (writer) {
+        sample.t = state.t;
+        sample.q = state.q;
+        sample.v = state.v;
+        sample.tau = tau;
+        sample.f_n.resize(m);
+        for (int i = 0; i < m; ++i) sample.f_n[i] = report.contacts[i].f_n;
+        sample.phase = report.phase;
+        writer->add(sample);
+      }
+    }
+  }
+  if (writer) writer->commit();
+  printSummary(summary, state, model, h, o, total, writer ? writer->size() : 0);
+  return 0;
+}
+
+}  // namespace
+}  // namespace rbsf::tools
+
+int main(int argc, char** argv) {
+  return rbsf::tools::toolMain("rbsf-simulate", argc, argv, rbsf::tools::run);
+}
