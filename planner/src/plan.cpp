@@ -196,7 +196,9 @@ void writePlanCsv(const Plan& plan, const std::string& path) {
     for (int k = 0; k < n; ++k) put(s.v[k]);
     for (int k = 0; k < s.tau.size(); ++k) put(s.tau[k]);
     for (int k = 0; k < s.f_n.size(); ++k) put(s.f_n[k]);
-    text += "," + std::string(toString(s.phase)) + "\n";
+    text += ',';
+    text += toString(s.phase);
+    text += '\n';
   }
   writeAtomically(path, text);
 }
