@@ -68,6 +68,8 @@ PhaseControl::PhaseControl(const RbsfModel& model, const PhaseControlOptions& op
 void PhaseControl::setState(const VecQ& q, const VecQ& v, ModelData& data) {
   const RbsfModel& model = *model_;
   const int m = m_, nq = model.configDim(), nu = model.controlDim(), no = layout::kObjectDim;
+  c_base_range_.reset();
+  u_object_range_.reset();
   model.velocityProducts(q, v, data);
   model.bias(q, v, data.bias);
   const VecQ& Q = data.bias;
@@ -184,16 +186,31 @@ PhaseControlResult PhaseControl::solveC(double theta_dd, double stroke_dd) const
 
 AccelRange PhaseControl::rangeC(int which, double other) const {
   if (!c_ok_) return {};
-  const int m = m_, nz = 2 * m + 2, nin = 2 * m + 2 * model_->controlDim();
+  const int m = m_, nin = 2 * m + 2 * model_->controlDim();
+  const bool fixed = !std::isnan(other);
+  // Columns: lambda, a_which, and a_other unless fixed (then moved to the right-hand side:
+  // a fixed LP variable would cost the simplex a row and a column).
+  const int nz = 2 * m + (fixed ? 1 : 2);
+  const auto G_lam = c_G_lam_.bottomRows(nin);
+  const auto G_a = c_G_a_.bottomRows(nin);
   MatrixXd A(layout::kObjectDim, nz), G(nin, nz);
-  A << c_E_lam_, c_E_a_;
-  G << c_G_lam_.bottomRows(nin), c_G_a_.bottomRows(nin);
+  A.leftCols(2 * m) = c_E_lam_;
+  A.col(2 * m) = c_E_a_.col(which);
+  G.leftCols(2 * m) = G_lam;
+  G.col(2 * m) = G_a.col(which);
+  VectorXd b = c_e_, g = c_g_.tail(nin);
+  if (fixed) {
+    b -= other * c_E_a_.col(1 - which);
+    g -= other * G_a.col(1 - which);
+  } else {
+    A.col(2 * m + 1) = c_E_a_.col(1 - which);
+    G.col(2 * m + 1) = G_a.col(1 - which);
+  }
   VectorXd lower = VectorXd::Constant(nz, -kInf), upper = VectorXd::Constant(nz, kInf);
   lower.head(m).setConstant(f_min_);  // f_n >= f_min as bounds, not rows
-  if (!std::isnan(other)) lower[2 * m + 1 - which] = upper[2 * m + 1 - which] = other;
   VectorXd c = VectorXd::Zero(nz);
-  c[2 * m + which] = 1.0;
-  return lpRange(c, 0.0, A, c_e_, G, c_g_.tail(nin), lower, upper);
+  c[2 * m] = 1.0;
+  return lpRange(c, 0.0, A, b, G, g, lower, upper);
 }
 
 AccelRange PhaseControl::rangeCBase(double stroke_dd) const { return rangeC(0, stroke_dd); }
@@ -280,7 +297,8 @@ AccelRange PhaseControl::rangeUBase(double omega_dd) const { return rangeU(1, om
 
 PhaseControlResult PhaseControl::sample(Phase phase, double primary, double secondary) const {
   if (phase == Phase::kC) {
-    const AccelRange base = rangeCBase();
+    if (!c_base_range_) c_base_range_ = rangeCBase();
+    const AccelRange base = *c_base_range_;
     if (!base.feasible || !finite(base)) return {};
     const double theta_dd = fromFraction(base, primary);
     const AccelRange stroke = rangeCStroke(theta_dd);
@@ -288,7 +306,8 @@ PhaseControlResult PhaseControl::sample(Phase phase, double primary, double seco
     return solveC(theta_dd, fromFraction(stroke, secondary));
   }
   if (phase == Phase::kU) {
-    const AccelRange object = rangeUObject();
+    if (!u_object_range_) u_object_range_ = rangeUObject();
+    const AccelRange object = *u_object_range_;
     if (!object.feasible || !finite(object)) return {};
     const double omega_dd = fromFraction(object, primary);
     if (std::isnan(secondary)) return solveU(omega_dd);

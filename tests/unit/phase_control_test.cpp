@@ -458,6 +458,16 @@ TEST(PhaseControlDefaultCell, HoldTurnAndRollOnTheDefaultPart) {
   // Fraction 0 is "no acceleration" whenever the range allows it.
   const PhaseControlResult still = pc.sample(Phase::kC, 0.0, 0.0);
   EXPECT_LT(still.vdot.norm(), 1e-9);
+  // A fraction scales the extreme in its direction (the range holds 0 here).
+  const AccelRange object = pc.rangeUObject();
+  ASSERT_TRUE(object.feasible);
+  ASSERT_LT(object.min, 0.0);
+  ASSERT_GT(object.max, 0.0);
+  EXPECT_NEAR(pc.sample(Phase::kU, 0.5).vdot[layout::kPhi], 0.5 * object.max, 1e-6 * object.max);
+  EXPECT_NEAR(pc.sample(Phase::kU, -0.25).vdot[layout::kPhi], 0.25 * object.min,
+              -1e-6 * object.min);
+  EXPECT_NEAR(pc.sample(Phase::kU, 3.0).vdot[layout::kPhi], object.max, 1e-5 * object.max)
+      << "fractions are clamped to [-1, 1]";
 }
 
 TEST(PhaseControlPreconditions, PhaseCNeedsTwoStickingContacts) {
