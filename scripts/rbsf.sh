@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The project's one entry script (see README "Quick start").
-#   scripts/rbsf.sh run       install what is missing, build Release, run the main job
+#   scripts/rbsf.sh run       install what is missing, build Release, plan the 180 degree turn
 #   scripts/rbsf.sh test      install what is missing, build Release, run the whole test suite
 #   scripts/rbsf.sh sanitize  build with AddressSanitizer + UBSan and run the unit tests
 set -euo pipefail
@@ -19,7 +19,9 @@ case "$cmd" in
   run)
     ./scripts/install-deps.sh
     configure_build build
-    ./build/tools/rbsf-analyze --cell cells/default.yaml --pose 0.1,0.40,0
+    # The main job: turn the default part over (180 degrees; the base alone reaches 45).
+    ./build/tools/plan-reorientation --cell cells/default.yaml --start 0.1,0.40,0 \
+      --goal=-0.1,0.40,180deg --out plan.json --csv plan.csv
     ;;
   test)
     ./scripts/install-deps.sh
@@ -30,6 +32,7 @@ case "$cmd" in
     ./scripts/install-deps.sh
     configure_build build-asan -DRBSF_SANITIZE=ON -DRBSF_BUILD_BENCHMARKS=OFF
     ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+      LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp" \
       ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
     ;;
   *)

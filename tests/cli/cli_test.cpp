@@ -314,3 +314,70 @@ TEST(Simulate, UnknownOutputExtensionIsBadInputBeforeAnyWork) {
 }
 
 }  // namespace
+
+// ---- plan-reorientation ----
+const std::string kPlan = RBSF_PLAN_EXE;
+
+TEST(PlanReorientation, SolvesASmallProblemAndWritesJsonAndCsv) {
+  const std::string out = writeTemp("plan.json", ""), csv = writeTemp("plan.csv", "");
+  const Result r = run(kPlan + " --cell " + kCells +
+                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 7"
+                       " --time-limit 120 --quiet --out " +
+                       out + " --csv " + csv);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;  // --quiet, and not a terminal anyway
+  const auto j = nlohmann::json::parse(slurp(out));
+  EXPECT_EQ(j["status"], "exact");
+  EXPECT_TRUE(j["planning_time"].is_number());
+  EXPECT_TRUE(j["propagations"].is_number_integer());
+  ASSERT_FALSE(j["segments"].empty());
+  for (const auto& s : j["segments"]) {
+    const std::string ph = s["phase"];
+    EXPECT_TRUE(ph == "C" || ph == "P" || ph == "U") << ph;
+    EXPECT_GT(s["duration"].get<double>(), 0.0);
+    EXPECT_EQ(s["tau"].size(), 4u);
+  }
+  ASSERT_FALSE(j["samples"].empty());
+  for (const char* key : {"t", "q", "v", "tau", "f_n", "phase"})
+    EXPECT_TRUE(j["samples"][0].contains(key)) << key;
+  EXPECT_EQ(j["samples"][0]["f_n"].size(), 3u);
+  const std::string text = slurp(csv);
+  EXPECT_EQ(text.rfind("t,x,y,phi,theta,l1,l2,l3,dx,", 0), 0u);
+  EXPECT_EQ(static_cast<size_t>(std::count(text.begin(), text.end(), '\n')),
+            j["samples"].size() + 1);
+}
+
+TEST(PlanReorientation, TimeLimitWithoutExactPlanExitsThree) {
+  const std::string out = writeTemp("approx.json", "");
+  const Result r = run(kPlan + " --cell " + kCells +
+                       "default.yaml --start 0.1,0.40,0 --goal=-0.1,0.40,180deg --seed 1"
+                       " --time-limit 0.05 --quiet --out " +
+                       out);
+  ASSERT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.out.find("best distance"), std::string::npos) << r.out;
+}
+
+TEST(PlanReorientation, BadInputIsRefusedWithExitTwo) {
+  const std::string base = kPlan + " --cell " + kCells + "default.yaml --quiet ";
+  struct Case {
+    std::string args, needle;
+  };
+  const Case cases[] = {
+      {"--start 0.1,2.0,0 --goal 0.1,0.4,10deg", "cannot hold the start pose"},
+      {"--start 0.1,0.40,0 --goal 0.1,3.0,0", "out of reach: no finger"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,abc", "--goal"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,0 --planner PRM", "unknown planner 'PRM'"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,0 --time-limit -1", "--time-limit"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,0 --seed 1.5", "--seed"},
+      {"--start 0.1,0.40 --goal 0.1,0.4,0", "--start"},
+  };
+  for (const Case& c : cases) {
+    const std::string out = writeTemp("never.json", "");
+    std::remove(out.c_str());
+    const Result r = run(base + c.args + " --out " + out);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << c.args;
+    EXPECT_FALSE(std::ifstream(out).good()) << c.args << ": wrote a file";
+  }
+}

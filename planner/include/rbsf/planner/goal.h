@@ -1,0 +1,43 @@
+#pragma once
+/// \file
+/// \brief The goal: the part's pose within tolerances, the part supported.
+///
+/// distanceGoal = max(|(x, y) - (x_g, y_g)| / position_tolerance,
+///                    |wrap(phi - phi_g)| / angle_tolerance)
+/// (wrap to (-pi, pi]: a pose is reached whichever way the part turned), so the goal
+/// region is distance <= 1. isSatisfied also requires the part supported (validity.h).
+/// Every call of isSatisfied records the smallest distance seen (progress and exit 3).
+
+#include <limits>
+
+#include <ompl/base/goals/GoalRegion.h>
+
+#include "rbsf/dynamics/placement.h"
+#include "rbsf/planner/validity.h"
+
+namespace rbsf::planner {
+
+/// \brief Goal region over the object's pose.
+class PoseGoal : public ompl::base::GoalRegion {
+ public:
+  PoseGoal(const ompl::base::SpaceInformationPtr& si, const Pose& goal, double position_tolerance,
+           double angle_tolerance, const SupportValidityChecker& support);
+
+  double distanceGoal(const ompl::base::State* state) const override;
+  bool isSatisfied(const ompl::base::State* state, double* distance) const override;
+  using ompl::base::GoalRegion::isSatisfied;
+
+  /// \brief Smallest distance (in tolerance units) passed to isSatisfied so far.
+  double bestDistance() const { return best_; }
+
+ private:
+  Pose goal_;
+  double position_tolerance_, angle_tolerance_;
+  const SupportValidityChecker& support_;
+  mutable double best_ = std::numeric_limits<double>::infinity();
+};
+
+/// \brief a - b wrapped to (-pi, pi].
+double angleDifference(double a, double b);
+
+}  // namespace rbsf::planner

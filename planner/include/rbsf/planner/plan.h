@@ -1,0 +1,90 @@
+#pragma once
+/// \file
+/// \brief A plan: tau segments, the trajectory they produce, and its files.
+///
+/// JSON (writePlanJson / readPlanJson; keys in this order):
+/// | key             | meaning |
+/// |-----------------|---------|
+/// | `status`        | `"exact"` (goal reached) or `"approximate"` (closest found) |
+/// | `planner`, `seed` | planner name and RNG seed |
+/// | `planning_time` | wall time of the search [s] |
+/// | `propagations`  | propagate() calls (each k simulator steps) |
+/// | `goal_distance` | final distance in tolerance units (<= 1 when exact) |
+/// | `time_step`     | simulator step h [s]; `steps_per_control` k |
+/// | `start`, `goal` | poses {x, y, phi}; `start_theta` the base angle at the start |
+/// | `q0`            | start configuration (state_layout.h order), at rest |
+/// | `segments[]`    | `phase` ("C", "P" or "U": the phase most steps of the segment took in
+/// simulation), `duration` [s], `steps`, `tau` | | `samples[]`     | every `sample_steps` steps and
+/// at each segment end: `t`, `q`, `v`, `tau` (held over the step that ends here), `f_n` per
+/// contact, `phase` of that step | CSV (writePlanCsv): one row per sample: t, q..., v..., tau...,
+/// f_n..., phase. Files are written to a temporary name and renamed; a plan with a NaN is refused.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rbsf/dynamics/phase.h"
+#include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/simulator.h"
+
+namespace rbsf::planner {
+
+/// \brief tau held over an integer number of simulator steps.
+struct PlanSegment {
+  Phase phase = Phase::kC;  ///< simulated phase (majority of the steps)
+  int steps = 0;            ///< simulator steps
+  double duration = 0.0;    ///< steps * h [s]
+  VecU tau;                 ///< order of state_layout.h
+};
+
+/// \brief One point of the densely sampled trajectory.
+struct PlanSample {
+  double t = 0.0;
+  VecQ q, v;
+  VecU tau;
+  VecC f_n;
+  Phase phase = Phase::kC;
+};
+
+/// \brief The planner's result.
+struct Plan {
+  std::string status = "approximate";  ///< "exact" or "approximate"
+  std::string planner;
+  std::uint32_t seed = 0;
+  double planning_time = 0.0;
+  std::uint64_t propagations = 0;
+  double goal_distance = 0.0;
+  double time_step = 1e-3;
+  int steps_per_control = 1;
+  Pose start, goal;
+  double start_theta = 0.0;
+  VecQ q0;
+  std::vector<PlanSegment> segments;
+  std::vector<PlanSample> samples;
+  /// \brief Largest |(q, v)| difference between the planner's tree states and the plan's
+  ///        re-simulation at the segment ends (not written to files).
+  double path_mismatch = 0.0;
+
+  /// \brief Total duration [s].
+  double duration() const;
+  /// \brief The phase letters of the segments with runs merged, e.g. "CUCU".
+  std::string phaseSequence() const;
+};
+
+/// \brief Simulate `segments` from q0 at rest (fresh SimState), fill their `phase` and
+///        return the samples (every `sample_steps` steps and every segment end).
+///        `ends`, when given, receives the SimState at each segment end.
+std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ& q0,
+                                         std::vector<PlanSegment>& segments, int sample_steps,
+                                         std::vector<SimState>* ends = nullptr);
+
+/// \brief "C", "P", "U"; throws InputError for anything else.
+Phase parsePhase(const std::string& text);
+
+/// \brief Write JSON / CSV atomically. \throws std::runtime_error on a NaN or I/O failure.
+void writePlanJson(const Plan& plan, const std::string& path);
+void writePlanCsv(const Plan& plan, const std::string& path);
+/// \brief Load a plan file. \throws InputError naming the file and key when malformed.
+Plan readPlanJson(const std::string& path);
+
+}  // namespace rbsf::planner

@@ -1,0 +1,43 @@
+#include "rbsf/planner/goal.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "rbsf/dynamics/state_layout.h"
+
+namespace rbsf::planner {
+
+double angleDifference(double a, double b) {
+  double d = std::remainder(a - b, 2.0 * M_PI);
+  if (d <= -M_PI) d += 2.0 * M_PI;
+  return d;
+}
+
+PoseGoal::PoseGoal(const ompl::base::SpaceInformationPtr& si, const Pose& goal,
+                   double position_tolerance, double angle_tolerance,
+                   const SupportValidityChecker& support)
+    : ompl::base::GoalRegion(si),
+      goal_(goal),
+      position_tolerance_(position_tolerance),
+      angle_tolerance_(angle_tolerance),
+      support_(support) {
+  setThreshold(1.0);
+}
+
+double PoseGoal::distanceGoal(const ompl::base::State* state) const {
+  const double* x = state->as<SimStateSpace::StateType>()->values;
+  const double dp = std::hypot(x[layout::kX] - goal_.x, x[layout::kY] - goal_.y);
+  const double da = std::abs(angleDifference(x[layout::kPhi], goal_.phi));
+  return std::max(dp / position_tolerance_, da / angle_tolerance_);
+}
+
+bool PoseGoal::isSatisfied(const ompl::base::State* state, double* distance) const {
+  const double d = distanceGoal(state);
+  if (distance) *distance = d;
+  const auto* s = state->as<SimStateSpace::StateType>();
+  const bool ok = d <= threshold_ && support_.supported(s->sim->q, s->sim->xi_hint);
+  if (ok || d < best_) best_ = std::min(best_, d);
+  return ok;
+}
+
+}  // namespace rbsf::planner

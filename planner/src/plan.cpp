@@ -1,0 +1,275 @@
+#include "rbsf/planner/plan.h"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "rbsf/dynamics/errors.h"
+
+namespace rbsf::planner {
+
+using nlohmann::json;
+
+double Plan::duration() const {
+  double d = 0.0;
+  for (const PlanSegment& s : segments) d += s.duration;
+  return d;
+}
+
+std::string Plan::phaseSequence() const {
+  std::string seq;
+  for (const PlanSegment& s : segments) {
+    const char c = std::string(toString(s.phase))[0];
+    if (seq.empty() || seq.back() != c) seq.push_back(c);
+  }
+  return seq;
+}
+
+Phase parsePhase(const std::string& text) {
+  if (text == "C") return Phase::kC;
+  if (text == "P") return Phase::kP;
+  if (text == "U") return Phase::kU;
+  throw InputError("phase must be \"C\", \"P\" or \"U\" (got \"" + text + "\")");
+}
+
+std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ& q0,
+                                         std::vector<PlanSegment>& segments, int sample_steps,
+                                         std::vector<SimState>* ends) {
+  const int m = simulator.model().numFingers();
+  SimState state(q0, VecQ::Zero(q0.size()));
+  SimulatorWorkspace ws(m);
+  StepReport report;
+  std::vector<PlanSample> samples;
+  auto record = [&](const VecU& tau, Phase phase) {
+    PlanSample s;
+    s.t = state.t;
+    s.q = state.q;
+    s.v = state.v;
+    s.tau = tau;
+    s.f_n = VecC(m);
+    for (int i = 0; i < m; ++i) s.f_n[i] = report.contacts[i].f_n;
+    s.phase = phase;
+    samples.push_back(std::move(s));
+  };
+  long step = 0;
+  for (PlanSegment& seg : segments) {
+    std::array<int, 3> count{};  // C, P, U
+    for (int k = 0; k < seg.steps; ++k) {
+      simulator.step(state, seg.tau, ws, &report);
+      const Phase ph = report.phase == Phase::kUnsupported ? Phase::kU : report.phase;
+      ++count[static_cast<int>(ph)];
+      ++step;
+      if (samples.empty()) {  // t = 0: the start at rest, with the first step's tau
+        SimState now = state;
+        state = SimState(q0, VecQ::Zero(q0.size()));
+        record(seg.tau, ph);
+        state = now;
+      }
+      if (step % sample_steps == 0 || k + 1 == seg.steps) record(seg.tau, ph);
+    }
+    int best = 0;
+    for (int p = 1; p < 3; ++p)
+      if (count[p] > count[best]) best = p;
+    seg.phase = static_cast<Phase>(best);
+    if (ends) ends->push_back(state);
+  }
+  return samples;
+}
+
+namespace {
+
+json vec(const auto& v) {
+  json a = json::array();
+  for (int k = 0; k < v.size(); ++k) a.push_back(v[k]);
+  return a;
+}
+
+json poseJson(const Pose& p) { return {{"x", p.x}, {"y", p.y}, {"phi", p.phi}}; }
+
+void requireFiniteJson(const json& j) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>()))
+    throw std::runtime_error("plan holds a NaN or infinite value; not written");
+  if (j.is_structured())
+    for (const json& e : j) requireFiniteJson(e);
+}
+
+void writeAtomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::trunc);
+    if (!f) throw InputError(path + ": cannot write");
+    f << text;
+    f.flush();
+    if (!f) {
+      std::remove(tmp.c_str());
+      throw InputError(path + ": write failed");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw InputError(path + ": cannot rename the temporary file into place");
+  }
+}
+
+template <class V>
+V readVec(const json& j, const std::string& what) {
+  if (!j.is_array()) throw InputError(what + " must be an array of numbers");
+  V v(static_cast<int>(j.size()));
+  for (size_t k = 0; k < j.size(); ++k) {
+    if (!j[k].is_number()) throw InputError(what + " must be an array of numbers");
+    v[static_cast<int>(k)] = j[k].get<double>();
+  }
+  return v;
+}
+
+}  // namespace
+
+void writePlanJson(const Plan& plan, const std::string& path) {
+  json segs = json::array();
+  for (const PlanSegment& s : plan.segments)
+    segs.push_back({{"phase", std::string(toString(s.phase))},
+                    {"duration", s.duration},
+                    {"steps", s.steps},
+                    {"tau", vec(s.tau)}});
+  json samples = json::array();
+  for (const PlanSample& s : plan.samples)
+    samples.push_back({{"t", s.t},
+                       {"q", vec(s.q)},
+                       {"v", vec(s.v)},
+                       {"tau", vec(s.tau)},
+                       {"f_n", vec(s.f_n)},
+                       {"phase", std::string(toString(s.phase))}});
+  json j = json::object();
+  j["status"] = plan.status;
+  j["planner"] = plan.planner;
+  j["seed"] = plan.seed;
+  j["planning_time"] = plan.planning_time;
+  j["propagations"] = plan.propagations;
+  j["goal_distance"] = plan.goal_distance;
+  j["time_step"] = plan.time_step;
+  j["steps_per_control"] = plan.steps_per_control;
+  j["start"] = poseJson(plan.start);
+  j["start_theta"] = plan.start_theta;
+  j["goal"] = poseJson(plan.goal);
+  j["q0"] = vec(plan.q0);
+  j["phase_sequence"] = plan.phaseSequence();
+  j["segments"] = segs;
+  j["samples"] = samples;
+  requireFiniteJson(j);
+  writeAtomically(path, j.dump(1) + "\n");
+}
+
+void writePlanCsv(const Plan& plan, const std::string& path) {
+  if (plan.q0.size() == 0) throw std::runtime_error("empty plan");
+  const int n = static_cast<int>(plan.q0.size()), m = n - 4;
+  std::string text = "t";
+  const char* names[] = {"x", "y", "phi", "theta"};
+  for (const char* pre : {"", "d"}) {
+    for (int k = 0; k < n; ++k) {
+      text += ',';
+      text += pre;
+      if (k < 4) {
+        text += names[k];
+      } else {
+        text += 'l';
+        text += std::to_string(k - 3);
+      }
+    }
+  }
+  text += ",tau_theta";
+  for (int i = 1; i <= m; ++i) text += ",tau_" + std::to_string(i);
+  for (int i = 1; i <= m; ++i) text += ",f_n" + std::to_string(i);
+  text += ",phase\n";
+  char buf[64];
+  auto put = [&](double x) {
+    if (!std::isfinite(x)) throw std::runtime_error("plan holds a NaN or infinite value");
+    std::snprintf(buf, sizeof buf, ",%.17g", x);
+    text += buf;
+  };
+  for (const PlanSample& s : plan.samples) {
+    std::snprintf(buf, sizeof buf, "%.17g", s.t);
+    text += buf;
+    for (int k = 0; k < n; ++k) put(s.q[k]);
+    for (int k = 0; k < n; ++k) put(s.v[k]);
+    for (int k = 0; k < s.tau.size(); ++k) put(s.tau[k]);
+    for (int k = 0; k < s.f_n.size(); ++k) put(s.f_n[k]);
+    text += ',';
+    text += toString(s.phase);
+    text += '\n';
+  }
+  writeAtomically(path, text);
+}
+
+Plan readPlanJson(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw InputError(path + ": cannot open");
+  json j;
+  try {
+    j = json::parse(f);
+  } catch (const json::exception& e) {
+    throw InputError(path + ": not JSON: " + e.what());
+  }
+  auto need = [&](const json& o, const char* key, const std::string& where) -> const json& {
+    if (!o.is_object() || !o.contains(key))
+      throw InputError(path + ": " + where + (where.empty() ? "" : ".") + key + " is missing");
+    return o.at(key);
+  };
+  auto num = [&](const json& o, const char* key, const std::string& where) {
+    const json& v = need(o, key, where);
+    if (!v.is_number()) throw InputError(path + ": " + where + key + " must be a number");
+    return v.get<double>();
+  };
+  auto pose = [&](const char* key) {
+    const json& p = need(j, key, "");
+    return Pose{num(p, "x", key), num(p, "y", key), num(p, "phi", key)};
+  };
+  try {
+    Plan plan;
+    plan.status = need(j, "status", "").get<std::string>();
+    if (plan.status != "exact" && plan.status != "approximate")
+      throw InputError(path + ": status must be \"exact\" or \"approximate\"");
+    plan.planner = need(j, "planner", "").get<std::string>();
+    plan.seed = need(j, "seed", "").get<std::uint32_t>();
+    plan.planning_time = num(j, "planning_time", "");
+    plan.propagations = need(j, "propagations", "").get<std::uint64_t>();
+    plan.goal_distance = num(j, "goal_distance", "");
+    plan.time_step = num(j, "time_step", "");
+    plan.steps_per_control = need(j, "steps_per_control", "").get<int>();
+    plan.start = pose("start");
+    plan.goal = pose("goal");
+    plan.start_theta = num(j, "start_theta", "");
+    plan.q0 = readVec<VecQ>(need(j, "q0", ""), path + ": q0");
+    const int n = static_cast<int>(plan.q0.size());
+    if (n < 5 || n > kMaxConfig) throw InputError(path + ": q0 has a wrong length");
+    for (const json& s : need(j, "segments", "")) {
+      PlanSegment seg;
+      seg.phase = parsePhase(need(s, "phase", "segments[]").get<std::string>());
+      seg.duration = num(s, "duration", "segments[].");
+      seg.steps = need(s, "steps", "segments[]").get<int>();
+      seg.tau = readVec<VecU>(need(s, "tau", "segments[]"), path + ": segments[].tau");
+      if (seg.tau.size() != n - 3 || seg.steps < 1)
+        throw InputError(path + ": segments[] needs steps >= 1 and m + 1 taus");
+      plan.segments.push_back(std::move(seg));
+    }
+    for (const json& s : need(j, "samples", "")) {
+      PlanSample p;
+      p.t = num(s, "t", "samples[].");
+      p.q = readVec<VecQ>(need(s, "q", "samples[]"), path + ": samples[].q");
+      p.v = readVec<VecQ>(need(s, "v", "samples[]"), path + ": samples[].v");
+      p.tau = readVec<VecU>(need(s, "tau", "samples[]"), path + ": samples[].tau");
+      p.f_n = readVec<VecC>(need(s, "f_n", "samples[]"), path + ": samples[].f_n");
+      p.phase = parsePhase(need(s, "phase", "samples[]").get<std::string>());
+      if (p.q.size() != n || p.v.size() != n || p.tau.size() != n - 3 || p.f_n.size() != n - 4)
+        throw InputError(path + ": samples[] entries have wrong lengths");
+      plan.samples.push_back(std::move(p));
+    }
+    return plan;
+  } catch (const json::exception& e) {
+    throw InputError(path + ": malformed plan: " + e.what());
+  }
+}
+
+}  // namespace rbsf::planner

@@ -1,0 +1,247 @@
+#include "rbsf/planner/reorientation_planner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/control/PathControl.h>
+#include <ompl/control/SpaceInformation.h>
+#include <ompl/control/planners/est/EST.h>
+#include <ompl/control/planners/kpiece/KPIECE1.h>
+#include <ompl/control/planners/pdst/PDST.h>
+#include <ompl/control/planners/rrt/RRT.h>
+#include <ompl/control/planners/sst/SST.h>
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/holding.h"
+#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/planner/goal.h"
+#include "rbsf/planner/projection.h"
+#include "rbsf/planner/propagator.h"
+
+namespace rbsf::planner {
+
+namespace ob = ompl::base;
+namespace oc = ompl::control;
+
+const std::vector<std::string>& plannerNames() {
+  static const std::vector<std::string> names = {"KPIECE1", "RRT", "SST", "EST", "PDST"};
+  return names;
+}
+
+namespace {
+
+std::string poseText(const Pose& p) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "(%.4g, %.4g, %.4g deg)", p.x, p.y, p.phi * 180.0 / M_PI);
+  return buf;
+}
+
+ob::PlannerPtr makePlanner(const std::string& name, const oc::SpaceInformationPtr& si,
+                           double goal_bias) {
+  if (name == "KPIECE1") {
+    auto p = std::make_shared<oc::KPIECE1>(si);
+    p->setGoalBias(goal_bias);
+    return p;
+  }
+  if (name == "RRT") {
+    auto p = std::make_shared<oc::RRT>(si);
+    p->setGoalBias(goal_bias);
+    return p;
+  }
+  if (name == "SST") {
+    auto p = std::make_shared<oc::SST>(si);
+    p->setGoalBias(goal_bias);
+    return p;
+  }
+  if (name == "EST") {
+    auto p = std::make_shared<oc::EST>(si);
+    p->setGoalBias(goal_bias);
+    return p;
+  }
+  auto p = std::make_shared<oc::PDST>(si);
+  p->setGoalBias(goal_bias);
+  return p;
+}
+
+}  // namespace
+
+ReorientationPlanner::ReorientationPlanner(const RbsfModel& model, PlannerSettings settings)
+    : model_(model), settings_(std::move(settings)), simulator_(model, settings_.simulator) {
+  const auto& names = plannerNames();
+  if (std::find(names.begin(), names.end(), settings_.planner) == names.end())
+    throw InputError("unknown planner '" + settings_.planner +
+                     "' (choose KPIECE1, RRT, SST, EST or PDST)");
+  if (!(settings_.time_limit > 0.0)) throw InputError("the time limit must be positive");
+  if (settings_.steps_per_control < 1 || settings_.min_control_steps < 1 ||
+      settings_.max_control_steps < settings_.min_control_steps || settings_.sample_steps < 1)
+    throw InputError("control steps must be positive and ordered");
+  if (!(settings_.position_tolerance > 0.0) || !(settings_.angle_tolerance > 0.0))
+    throw InputError("goal tolerances must be positive");
+}
+
+VecQ ReorientationPlanner::checkProblem(const Problem& problem) const {
+  const Cell& cell = model_.cell();
+  if (problem.start_theta < cell.base.theta_min || problem.start_theta > cell.base.theta_max)
+    throw InputError("--start-theta is outside the base range");
+  const Placement start = placeFingers(model_, problem.start, problem.start_theta);
+  if (!start.ok)
+    throw InputError("the fingers cannot hold the start pose " + poseText(problem.start) + ": " +
+                     start.message);
+  VecQ q(model_.configDim());
+  q << problem.start.x, problem.start.y, problem.start.phi, problem.start_theta,
+      start.strokes.head(model_.numFingers());
+  ModelData data(model_.numFingers());
+  model_.updateContacts(q, data);
+  if (!holdingTorques(model_, q, data).feasible)
+    throw InputError("the fingers cannot hold the part at rest at the start pose " +
+                     poseText(problem.start) +
+                     ": no contact forces in the friction cones balance it within the limits");
+  // The goal: some base angle at which at least min_touching fingers reach the part
+  // (the tip's line of travel enters it within the stroke), the validity's support test.
+  const int n = 181;
+  int most = 0;
+  for (int k = 0; k < n; ++k) {
+    const double theta =
+        cell.base.theta_min + (cell.base.theta_max - cell.base.theta_min) * k / (n - 1);
+    const Vec2 x_o(problem.goal.x, problem.goal.y);
+    const Vec2 dir = rotate(-problem.goal.phi, rotate(theta, Vec2(0.0, 1.0)));
+    int reach = 0;
+    for (const FingerParams& f : cell.fingers) {
+      const Vec2 origin = rotate(-problem.goal.phi, rotate(theta, Vec2(f.r, 0.0)) - x_o);
+      double l = 0.0, xi = 0.0;
+      if (model_.shape().entryAlongLine(origin, dir, l, xi) && l >= f.stroke_min &&
+          l <= f.stroke_max)
+        ++reach;
+    }
+    most = std::max(most, reach);
+    if (reach >= settings_.validity.min_touching) return q;
+  }
+  std::string why = "the goal pose " + poseText(problem.goal) + " is out of reach: ";
+  if (most == 0) {
+    why += "no finger";
+  } else {
+    why += "only ";
+    why += std::to_string(most);
+    why += " finger(s)";
+  }
+  why += " can reach the part at any base angle in the base range (";
+  why += std::to_string(settings_.validity.min_touching);
+  why += " needed to support it)";
+  throw InputError(why);
+}
+
+bool ReorientationPlanner::solve(const Problem& problem, Plan& plan) {
+  const VecQ q0 = checkProblem(problem);
+  const PlannerSettings& s = settings_;
+  const int m = model_.numFingers();
+  const double dt = simulator_.settings().time_step;
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  ompl::RNG::setSeed(s.seed == 0 ? 1 : s.seed);
+
+  auto space = std::make_shared<SimStateSpace>(model_, s.speed);
+  space->registerDefaultProjection(
+      std::make_shared<PhiThetaProjection>(space.get(), s.projection_cell, s.projection_cell));
+  auto cspace = std::make_shared<oc::RealVectorControlSpace>(space, model_.controlDim());
+  ob::RealVectorBounds cb(model_.controlDim());
+  const Cell& cell = model_.cell();
+  cb.setLow(layout::kTauTheta, -cell.base.torque_limit);
+  cb.setHigh(layout::kTauTheta, cell.base.torque_limit);
+  for (int i = 0; i < m; ++i) {
+    cb.setLow(layout::fingerForce(i), -cell.fingers[i].force_limit);
+    cb.setHigh(layout::fingerForce(i), cell.fingers[i].force_limit);
+  }
+  cspace->setBounds(cb);
+  const SimStateSpace& sp = *space;
+  cspace->setControlSamplerAllocator([this, &sp, &s](const oc::ControlSpace* cs) {
+    return std::make_shared<PhaseControlSampler>(cs, model_, sp, s.sampler,
+                                                 s.validity.touch_distance);
+  });
+  auto si = std::make_shared<oc::SpaceInformation>(space, cspace);
+  auto checker = std::make_shared<SupportValidityChecker>(si, model_, s.validity);
+  si->setStateValidityChecker(checker);
+  auto propagator = std::make_shared<SimPropagator>(si, simulator_, sp);
+  si->setStatePropagator(propagator);
+  si->setPropagationStepSize(s.steps_per_control * dt);
+  si->setMinMaxControlDuration(s.min_control_steps, s.max_control_steps);
+  si->setup();
+
+  auto pdef = std::make_shared<ob::ProblemDefinition>(si);
+  ob::State* start = si->allocState();
+  space->fromSim(SimState(q0, VecQ::Zero(q0.size())), start);
+  pdef->addStartState(start);
+  si->freeState(start);
+  auto goal = std::make_shared<PoseGoal>(si, problem.goal, s.position_tolerance, s.angle_tolerance,
+                                         *checker);
+  pdef->setGoal(goal);
+  ob::PlannerPtr planner = makePlanner(s.planner, si, s.goal_bias);
+  planner->setProblemDefinition(pdef);
+  planner->setup();
+
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  double last_report = 0.0;
+  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+  const ob::PlannerTerminationCondition ptc([&] {
+    const double t = elapsed();
+    if (s.progress && t - last_report >= 1.0) {
+      last_report = t;
+      s.progress({t, propagator->propagations(), goal->bestDistance()});
+    }
+    return t >= s.time_limit || goal->bestDistance() <= 1.0;
+  });
+  planner->solve(ptc);
+  const double planning_time = elapsed();
+  best_distance_ = goal->bestDistance();
+  propagations_ = propagator->propagations();
+
+  const ob::PathPtr path = pdef->getSolutionPath();
+  if (!path) return false;
+  auto& pc = static_cast<oc::PathControl&>(*path);
+  plan = Plan();
+  plan.status = pdef->hasExactSolution() ? "exact" : "approximate";
+  plan.planner = s.planner;
+  plan.seed = s.seed;
+  plan.planning_time = planning_time;
+  plan.propagations = propagations_;
+  plan.time_step = dt;
+  plan.steps_per_control = s.steps_per_control;
+  plan.start = problem.start;
+  plan.start_theta = problem.start_theta;
+  plan.goal = problem.goal;
+  plan.q0 = q0;
+  for (std::size_t k = 0; k < pc.getControlCount(); ++k) {
+    PlanSegment seg;
+    seg.steps = static_cast<int>(std::lround(pc.getControlDuration(k) / dt));
+    seg.duration = seg.steps * dt;
+    const double* u = pc.getControl(k)->as<oc::RealVectorControlSpace::ControlType>()->values;
+    seg.tau = VecU(model_.controlDim());
+    for (int j = 0; j < model_.controlDim(); ++j) seg.tau[j] = u[j];
+    if (seg.steps > 0) plan.segments.push_back(std::move(seg));
+  }
+  std::vector<SimState> ends;
+  plan.samples = simulateSegments(simulator_, q0, plan.segments, s.sample_steps, &ends);
+  // The re-simulation against the planner's own states at the segment ends.
+  std::size_t e = 0;
+  for (std::size_t k = 0; k < pc.getControlCount() && e < ends.size(); ++k) {
+    if (std::lround(pc.getControlDuration(k) / dt) == 0) continue;
+    const auto* st = pc.getState(k + 1)->as<SimStateSpace::StateType>();
+    const double dq = (st->sim->q - ends[e].q).cwiseAbs().maxCoeff();
+    const double dv = (st->sim->v - ends[e].v).cwiseAbs().maxCoeff();
+    plan.path_mismatch = std::max({plan.path_mismatch, dq, dv});
+    ++e;
+  }
+  const VecQ& qf = ends.empty() ? q0 : ends.back().q;
+  plan.goal_distance =
+      std::max(std::hypot(qf[layout::kX] - problem.goal.x, qf[layout::kY] - problem.goal.y) /
+                   s.position_tolerance,
+               std::abs(angleDifference(qf[layout::kPhi], problem.goal.phi)) / s.angle_tolerance);
+  return true;
+}
+
+}  // namespace rbsf::planner

@@ -1,0 +1,202 @@
+// The reorientation planner: small problems solved with fixed seeds, re-simulation of a
+// plan reproduces it, same seed same plan, plan files round-trip, bad problems refused.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/planner/reorientation_planner.h"
+
+namespace rbsf::planner {
+namespace {
+
+const std::string kDefaultCell = std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml";
+
+Problem smallProblem() {
+  Problem p;
+  p.start = {0.1, 0.40, 0.0};
+  p.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
+  return p;
+}
+
+PlannerSettings testSettings(std::uint32_t seed) {
+  PlannerSettings s;
+  s.seed = seed;
+  s.time_limit = 120.0;  // generous: the search ends at the goal (sanitizer builds are slow)
+  return s;
+}
+
+class PlannerTest : public ::testing::Test {
+ protected:
+  RbsfModel model{loadCell(kDefaultCell)};
+};
+
+TEST_F(PlannerTest, SmallProblemSolvedExactlyAndReproducedByResimulation) {
+  ReorientationPlanner planner(model, testSettings(7));
+  Plan plan;
+  ASSERT_TRUE(planner.solve(smallProblem(), plan));
+  ASSERT_EQ(plan.status, "exact");
+  EXPECT_LE(plan.goal_distance, 1.0);
+  ASSERT_FALSE(plan.segments.empty());
+  // The planner's own tree states equal the re-simulation of its controls.
+  EXPECT_LE(plan.path_mismatch, 1e-9);
+
+  // Independent re-simulation: a plain loop over the tau segments from q0 at rest.
+  const Simulator sim(model, planner.settings().simulator);
+  SimulatorWorkspace ws(model.numFingers());
+  SimState state(plan.q0, VecQ::Zero(plan.q0.size()));
+  std::vector<VecQ> qs{state.q}, vs{state.v};
+  StepReport report;
+  int touching_min = model.numFingers();
+  for (const PlanSegment& seg : plan.segments) {
+    ASSERT_EQ(seg.steps, static_cast<int>(std::lround(seg.duration / plan.time_step)));
+    for (int k = 0; k < seg.steps; ++k) {
+      sim.step(state, seg.tau, ws, &report);
+      qs.push_back(state.q);
+      vs.push_back(state.v);
+    }
+    // Support as the validity checker defines it: fingertips within touch_distance.
+    ModelData data(model.numFingers());
+    model.updateContacts(state.q, data);
+    int touching = 0;
+    for (int i = 0; i < model.numFingers(); ++i) {
+      if (data.contacts[i].gap <= planner.settings().validity.touch_distance) ++touching;
+      EXPECT_GE(data.contacts[i].gap, -planner.settings().validity.penetration_tolerance);
+    }
+    touching_min = std::min(touching_min, touching);
+    // Every segment end stays valid: limits and support.
+    const Cell& c = model.cell();
+    EXPECT_GE(state.q[layout::kTheta], c.base.theta_min - 1e-3);
+    EXPECT_LE(state.q[layout::kTheta], c.base.theta_max + 1e-3);
+    for (int i = 0; i < model.numFingers(); ++i) {
+      EXPECT_GE(state.q[layout::stroke(i)], c.fingers[i].stroke_min - 1e-3);
+      EXPECT_LE(state.q[layout::stroke(i)], c.fingers[i].stroke_max + 1e-3);
+    }
+    for (int j = 0; j < seg.tau.size(); ++j) {
+      const double limit =
+          j == layout::kTauTheta ? c.base.torque_limit : c.fingers[j - 1].force_limit;
+      EXPECT_LE(std::abs(seg.tau[j]), limit);
+    }
+  }
+  EXPECT_GE(touching_min, 2);
+  ASSERT_GE(plan.samples.size(), 2u);
+  for (const PlanSample& s : plan.samples) {
+    const long k = std::lround(s.t / plan.time_step);
+    ASSERT_LT(k, static_cast<long>(qs.size()));
+    EXPECT_LE((s.q - qs[k]).cwiseAbs().maxCoeff(), 1e-9) << "t = " << s.t;
+    EXPECT_LE((s.v - vs[k]).cwiseAbs().maxCoeff(), 1e-9) << "t = " << s.t;
+  }
+  // The last state reaches the goal pose within the tolerances.
+  const Pose goal = smallProblem().goal;
+  const VecQ& qf = qs.back();
+  EXPECT_LE(std::hypot(qf[layout::kX] - goal.x, qf[layout::kY] - goal.y), 0.01);
+  EXPECT_LE(std::abs(qf[layout::kPhi] - goal.phi), 2.0 * M_PI / 180.0 + 1e-12);
+}
+
+TEST_F(PlannerTest, SameSeedSamePlan) {
+  Plan a, b;
+  {
+    ReorientationPlanner planner(model, testSettings(3));
+    ASSERT_TRUE(planner.solve(smallProblem(), a));
+  }
+  {
+    ReorientationPlanner planner(model, testSettings(3));
+    ASSERT_TRUE(planner.solve(smallProblem(), b));
+  }
+  ASSERT_EQ(a.status, "exact");
+  ASSERT_EQ(a.segments.size(), b.segments.size());
+  for (size_t k = 0; k < a.segments.size(); ++k) {
+    EXPECT_EQ(a.segments[k].steps, b.segments[k].steps);
+    EXPECT_TRUE(a.segments[k].tau == b.segments[k].tau) << "segment " << k;
+  }
+  EXPECT_EQ(a.propagations, b.propagations);
+}
+
+TEST_F(PlannerTest, PlanFileRoundTrips) {
+  ReorientationPlanner planner(model, testSettings(7));
+  Plan plan;
+  ASSERT_TRUE(planner.solve(smallProblem(), plan));
+  const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_plan.json";
+  writePlanJson(plan, path);
+  const Plan back = readPlanJson(path);
+  EXPECT_EQ(back.status, plan.status);
+  EXPECT_EQ(back.planner, "KPIECE1");
+  EXPECT_EQ(back.seed, 7u);
+  EXPECT_EQ(back.propagations, plan.propagations);
+  EXPECT_TRUE(back.q0 == plan.q0);
+  ASSERT_EQ(back.segments.size(), plan.segments.size());
+  for (size_t k = 0; k < plan.segments.size(); ++k) {
+    EXPECT_EQ(back.segments[k].phase, plan.segments[k].phase);
+    EXPECT_EQ(back.segments[k].steps, plan.segments[k].steps);
+    EXPECT_TRUE(back.segments[k].tau == plan.segments[k].tau);  // bit-exact doubles
+  }
+  ASSERT_EQ(back.samples.size(), plan.samples.size());
+  for (size_t k = 0; k < plan.samples.size(); ++k) {
+    EXPECT_TRUE(back.samples[k].q == plan.samples[k].q);
+    EXPECT_TRUE(back.samples[k].f_n == plan.samples[k].f_n);
+    EXPECT_EQ(back.samples[k].phase, plan.samples[k].phase);
+  }
+  // The loaded segments re-simulate to the same samples.
+  std::vector<PlanSegment> segs = back.segments;
+  const auto again = simulateSegments(planner.simulator(), back.q0, segs, 10);
+  ASSERT_EQ(again.size(), plan.samples.size());
+  EXPECT_TRUE(again.back().q == plan.samples.back().q);
+}
+
+TEST_F(PlannerTest, MalformedPlanFileIsRefused) {
+  const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_bad.json";
+  { std::ofstream(path) << R"({"status": "exact", "planner": "RRT"})"; }
+  try {
+    readPlanJson(path);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("seed is missing"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(PlannerTest, UnholdableStartAndUnreachableGoalAreRefused) {
+  ReorientationPlanner planner(model, testSettings(1));
+  Problem p = smallProblem();
+  p.start = {0.1, 2.0, 0.0};  // far above every fingertip
+  try {
+    planner.checkProblem(p);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot hold the start pose"), std::string::npos)
+        << e.what();
+  }
+  p = smallProblem();
+  p.goal = {0.1, 3.0, 0.0};
+  try {
+    planner.checkProblem(p);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("out of reach: no finger"), std::string::npos) << e.what();
+  }
+  PlannerSettings bad = testSettings(1);
+  bad.planner = "PRM";
+  EXPECT_THROW(ReorientationPlanner(model, bad), InputError);
+}
+
+TEST_F(PlannerTest, UnholdableStartOfAWeakCellIsRefused) {
+  Cell cell = loadCell(kDefaultCell);
+  for (FingerParams& f : cell.fingers) f.force_limit = 1.0;  // cannot carry 24 kg
+  const RbsfModel weak(cell);
+  ReorientationPlanner planner(weak, testSettings(1));
+  try {
+    planner.checkProblem(smallProblem());
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot hold the part at rest"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rbsf::planner
