@@ -123,7 +123,9 @@ struct StepReport {
   bool resolved = false;  ///< a friction-memory switch solved the step twice
 };
 
-/// \brief Preallocated buffers of Simulator::step(); one per thread.
+/// \brief Preallocated buffers of Simulator::step(); one per thread. About 100 KB of
+///        fixed-capacity matrices (plus a heap-allocated Lemke tableau): keep it on the heap
+///        when many are needed or threads have small stacks.
 struct SimulatorWorkspace {
   explicit SimulatorWorkspace(int m);
 
