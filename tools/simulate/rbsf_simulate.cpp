@@ -130,8 +130,11 @@ void printSummary(const Summary& s, const SimState& state, const RbsfModel& mode
 
 int run(int argc, char** argv) {
   CLI::App app{
-      "rbsf-simulate: simulate a cell under piecewise-constant inputs, the part starting at "
-      "rest on the fingers (SI units; angles in radians or with a deg suffix)"};
+      "Simulate a cell under piecewise-constant inputs through stick, slip, separation and "
+      "renewed contact, the part starting at rest on the fingers placed by the placement "
+      "rule. Prints a summary; --out writes the sampled trajectory. SI units; angles in "
+      "radians or with a deg suffix.",
+      "rbsf-simulate"};
   Options o;
   app.add_option("--cell", o.cell, "cell YAML file")->required();
   app.add_option("--start", o.start, "start pose of the part x,y,phi; fingers placed")->required();
@@ -141,6 +144,7 @@ int run(int argc, char** argv) {
       ->required();
   app.add_option("--dt", o.dt, "time step [s] (default 0.001)");
   app.add_option("--out", o.out, "write the sampled trajectory (.csv or .json)");
+  app.footer(kExitStatusHelp);
   parseCommandLine(app, argc, argv);
 
   const RbsfModel model(loadCell(o.cell));
