@@ -49,8 +49,8 @@ void BM_SimulatorStepHeld(benchmark::State& state) {
   sim.step(s, tau, ws, &report);
   for (auto _ : state) {
     // The base angle is an inverted pendulum: a PD (zero at rest) keeps the part held.
-    tau[layout::kTauTheta] = hold.tau[layout::kTauTheta] - 2e3 * s.q[layout::kTheta] -
-                             300.0 * s.v[layout::kTheta];
+    tau[layout::kTauTheta] =
+        hold.tau[layout::kTauTheta] - 2e3 * s.q[layout::kTheta] - 300.0 * s.v[layout::kTheta];
     sim.step(s, tau, ws, &report);
     benchmark::DoNotOptimize(s.q.data());
     benchmark::ClobberMemory();

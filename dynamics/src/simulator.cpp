@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "rbsf/dynamics/errors.h"
@@ -207,6 +208,8 @@ void Simulator::correctDrift(const SimState& state, SimulatorWorkspace& ws) cons
 void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws,
                      StepReport* report) const {
   const int m = model_.numFingers();
+  if (state.q.size() != m + 4 || state.v.size() != m + 4 || tau.size() != m + 1 || ws.data.m != m)
+    throw std::invalid_argument("Simulator::step: state, tau or workspace sized for another m");
   const double h = settings_.time_step;
   const FrictionParams& fr = model_.cell().friction;
   ModelData& d = ws.data;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "rbsf/dynamics/errors.h"
 #include "sim_test_support.h"
@@ -295,6 +296,12 @@ TEST(Simulator, RejectsBadSettingsAndStates) {
   bad.activation_distance = 1e-9;  // below the contact tolerance
   EXPECT_THROW(Simulator(model, bad), InputError);
   EXPECT_THROW(SimState(VecQ::Zero(7), VecQ::Zero(6)), InputError);
+  const Simulator sim(model);
+  SimulatorWorkspace ws3(3), ws4(4);
+  SimState s3(VecQ::Zero(7), VecQ::Zero(7)), s4(VecQ::Zero(8), VecQ::Zero(8));
+  EXPECT_THROW(sim.step(s4, VecU::Zero(4), ws3), std::invalid_argument);
+  EXPECT_THROW(sim.step(s3, VecU::Zero(5), ws3), std::invalid_argument);
+  EXPECT_THROW(sim.step(s3, VecU::Zero(4), ws4), std::invalid_argument);
   EXPECT_EQ(toString(ContactMode::kSlide), "slide");
 }
 

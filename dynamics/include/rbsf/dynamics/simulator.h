@@ -9,9 +9,12 @@
 ///   v+ = v + h M^-1 (u - Q(q, v)) + M^-1 W lambda,      q+ = q + h v+ + dq_corr
 ///
 /// (angles are plain numbers, never wrapped). W stacks, for the rows active in this step,
-///   - contact i (gap g_i <= activation_distance): normal column G1_i, tangential T_i;
-///   - hard limits within activation_distance of an end: +e_k for a lower end
-///     (gap q_k - q_min), -e_k for an upper end (gap q_max - q_k), k = theta or a stroke.
+///   - contact i: normal column G1_i, tangential T_i;
+///   - hard limits: +e_k for a lower end (gap q_k - q_min), -e_k for an upper end
+///     (gap q_max - q_k), k = theta or a stroke.
+/// A row is active when g + h min(0, r_free) <= activation_distance, r_free its rate under
+/// the free velocity v + h M^-1 (u - Q): near rows, and far ones that would close within
+/// the step (no tunnelling at speed).
 /// The impulses lambda [N s] solve the contact problem of contact_impulse_solver.h with
 /// the row velocities y = W^T v+ + c:
 ///   normal rows   y_n = G1_i^T v+ + (h/2) h_n,i  [+ g_i / h when the row is open],
@@ -120,7 +123,9 @@ struct StepReport {
   bool resolved = false;  ///< a friction-memory switch solved the step twice
 };
 
-/// \brief Preallocated buffers of Simulator::step(); one per thread.
+/// \brief Preallocated buffers of Simulator::step(); one per thread. About 100 KB of
+///        fixed-capacity matrices (plus a heap-allocated Lemke tableau): keep it on the heap
+///        when many are needed or threads have small stacks.
 struct SimulatorWorkspace {
   explicit SimulatorWorkspace(int m);
 
@@ -152,6 +157,7 @@ class Simulator {
 
   /// \brief Advance `state` by one step h with tau (order of state_layout.h) held constant.
   ///        Allocation-free. `report` may be null.
+  /// \throws std::invalid_argument when state, tau or workspace are sized for another m.
   void step(SimState& state, const VecU& tau, SimulatorWorkspace& ws,
             StepReport* report = nullptr) const;
 
