@@ -7,6 +7,7 @@
 #include <Eigen/QR>
 
 #include "rbsf/dynamics/small_solvers.h"
+#include "rbsf/dynamics/stick_dynamics.h"
 
 namespace rbsf {
 namespace {
@@ -260,14 +261,7 @@ PhaseControlResult PhaseControl::solveU(double omega_dd, double theta_dd) const 
     const VectorXd minv_u = u_Minv_x_.leftCols(nu) * out.tau;
     const VectorXd r = h_ + n_.transpose() * (minv_u + u_acc0_);
     const double mu = model_->cell().friction.mu_static;
-    MatrixXd Gc = MatrixXd::Zero(3 * m, 2 * m);
-    for (int i = 0; i < m; ++i) {
-      Gc(3 * i, i) = 1.0;
-      Gc(3 * i + 1, i) = mu;
-      Gc(3 * i + 1, m + i) = -1.0;
-      Gc(3 * i + 2, i) = mu;
-      Gc(3 * i + 2, m + i) = 1.0;
-    }
+    const MatrixXd Gc = frictionConeRows(m, mu);
     VectorXd lambda;
     const double r_scale = h_.norm() + n_.norm() * (minv_u.norm() + u_acc0_.norm());
     out.stick_feasible = leastNormInPolyhedron(k_, -r, Gc, VectorXd::Zero(3 * m), lambda,
