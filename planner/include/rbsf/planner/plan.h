@@ -34,7 +34,38 @@ struct PlanSegment {
   Phase phase = Phase::kC;  ///< simulated phase (majority of the steps)
   int steps = 0;            ///< simulator steps
   double duration = 0.0;    ///< steps * h [s]
-  VecU tau;                 ///< order of state_layout.h
+  VecU tau;                 ///< order of state_layout.h (at the segment's start)
+  /// \brief Empty: tau held over the segment (planner). Otherwise tau ramps linearly
+  ///        from `tau` to `tau_end` (optimised plans; `steps` is then the nominal
+  ///        round(duration / h) and `duration` is exact).
+  VecU tau_end;
+};
+
+/// \brief How the optimiser's solve went (plan file key `optimization`).
+struct OptimizationSummary {
+  bool ran = false;               ///< false: --no-optimize, key not written
+  std::string status;             ///< Ipopt's name of its return status, e.g. "Solve_Succeeded"
+  int iterations = 0;
+  double solve_time = 0.0;        ///< [s]
+  double cost_before = 0.0;       ///< the objective on the planner's plan
+  double cost_after = 0.0;        ///< and on the optimised one
+  std::string message;            ///< why it failed or was rejected, empty otherwise
+};
+
+/// \brief One replay of a plan in the simulator (plan file key `replay`).
+struct ReplayResult {
+  double position_error = 0.0;      ///< final COM distance to the goal [m]
+  double angle_error = 0.0;         ///< final |phi - phi_goal|, wrapped [rad]
+  double min_f_n = 0.0;             ///< least normal force over the replay [N]
+  std::string phases;               ///< phase sequence seen, runs merged, e.g. "PUPU"
+  double max_tracking_error = 0.0;  ///< closed loop only: max joint error [rad or m]
+};
+
+/// \brief Closed- and open-loop replays of an optimised plan and the verdict.
+struct ReplaySummary {
+  bool ran = false;
+  ReplayResult closed_loop, open_loop;
+  bool accepted = false;
 };
 
 /// \brief One point of the densely sampled trajectory.
@@ -61,6 +92,8 @@ struct Plan {
   VecQ q0;
   std::vector<PlanSegment> segments;
   std::vector<PlanSample> samples;
+  OptimizationSummary optimization;  ///< written when optimization.ran
+  ReplaySummary replay;              ///< written when replay.ran (with `accepted`)
   /// \brief Largest |(q, v)| difference between the planner's tree states and the plan's
   ///        re-simulation at the segment ends (not written to files).
   double path_mismatch = 0.0;

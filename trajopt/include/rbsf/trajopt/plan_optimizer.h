@@ -1,0 +1,53 @@
+#pragma once
+/// \file
+/// \brief The public face of rbsf::trajopt: refine a planner's plan into smooth torques
+///        tau(t) by direct collocation on its phase schedule, solved by Ipopt.
+///
+/// (Contract written before the implementation; the implementation documents the NLP in
+/// the headers of its elements and the decision-vector layout in decision_layout.h.)
+
+#include <string>
+
+#include "rbsf/dynamics/model.h"
+#include "rbsf/planner/plan.h"
+
+namespace rbsf::trajopt {
+
+/// \brief Everything the optimiser can be told; defaults are the documented ones.
+struct OptimizerSettings {
+  int knots = 100;                  ///< collocation intervals over the whole plan (>= 2 per phase)
+  double smoothness_weight = 0.01;  ///< weight of the integral of tau_dot^T W tau_dot [s^2]
+  double duration_min_scale = 0.5;  ///< each phase's duration within [min, max] x planned
+  double duration_max_scale = 2.0;
+  double cone_margin = 0.9;         ///< sticking forces kept within margin * mu_s
+  int max_iterations = 500;         ///< Ipopt max_iter
+  double tolerance = 1e-6;          ///< Ipopt tol
+  double max_solve_time = 30.0;     ///< Ipopt max_wall_time [s]
+  int print_level = 0;              ///< Ipopt print_level (0: silent)
+  bool derivative_test = false;     ///< run Ipopt's first-order derivative checker
+  std::string derivative_test_file; ///< where the checker's output goes (Ipopt output_file)
+};
+
+/// \brief The optimised plan and how the solve went. Never throws for a solver failure:
+///        `plan.optimization` says what happened and `plan` is then the input plan.
+struct OptimizedPlan {
+  bool success = false;  ///< Ipopt converged (Solve_Succeeded or Solved_To_Acceptable_Level)
+  planner::Plan plan;    ///< refined segments (tau ramps, see PlanSegment::tau_end) and samples
+};
+
+/// \brief Direct-collocation refinement of plans for one cell.
+class PlanOptimizer {
+ public:
+  /// \throws InputError for bad settings.
+  PlanOptimizer(const RbsfModel& model, OptimizerSettings settings = {});
+
+  /// \brief Refine `plan` (made by the planner for this model's cell).
+  /// \throws InputError when the plan does not belong to the model (dimensions).
+  OptimizedPlan optimize(const planner::Plan& plan) const;
+
+ private:
+  const RbsfModel& model_;
+  OptimizerSettings settings_;
+};
+
+}  // namespace rbsf::trajopt
