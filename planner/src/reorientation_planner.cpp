@@ -1,6 +1,7 @@
 #include "rbsf/planner/reorientation_planner.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -193,7 +194,8 @@ bool ReorientationPlanner::solve(const Problem& problem, Plan& plan) {
       last_report = t;
       s.progress({t, propagator->propagations(), goal->bestDistance()});
     }
-    return t >= s.time_limit || goal->bestDistance() <= 1.0;
+    const bool cancelled = s.cancel != nullptr && s.cancel->load(std::memory_order_relaxed);
+    return cancelled || t >= s.time_limit || goal->bestDistance() <= 1.0;
   });
   planner->solve(ptc);
   const double planning_time = elapsed();

@@ -17,6 +17,7 @@
 /// phase; path_mismatch compares that re-simulation with the planner's own states.
 /// OMPL's console output is silenced.
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -55,6 +56,9 @@ struct PlannerSettings {
   ValiditySettings validity;
   SamplerSettings sampler;
   std::function<void(const Progress&)> progress;  ///< called about once per second
+  /// \brief When set and it becomes true (another thread, a signal handler), the search
+  ///        stops at its next check and solve() returns the best plan found so far.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 /// \brief The problem: start pose (fingers placed at start_theta, part at rest) and goal.

@@ -6,6 +6,7 @@
 /// (Contract written before the implementation; the implementation documents the NLP in
 /// the headers of its elements and the decision-vector layout in decision_layout.h.)
 
+#include <atomic>
 #include <string>
 
 #include "rbsf/dynamics/model.h"
@@ -26,6 +27,9 @@ struct OptimizerSettings {
   int print_level = 0;              ///< Ipopt print_level (0: silent)
   bool derivative_test = false;     ///< run Ipopt's first-order derivative checker
   std::string derivative_test_file; ///< where the checker's output goes (Ipopt output_file)
+  /// \brief When set and it becomes true, Ipopt stops at its next iteration (status
+  ///        "User_Requested_Stop") and the input plan is returned.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 /// \brief The optimised plan and how the solve went. Never throws for a solver failure:
