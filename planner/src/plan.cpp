@@ -181,8 +181,8 @@ void writePlanJson(const Plan& plan, const std::string& path) {
     json closed = replayJson(plan.replay.closed_loop);
     closed["max_tracking_error"] = plan.replay.closed_loop.max_tracking_error;
     j["replay"] = {{"closed_loop", closed}, {"open_loop", replayJson(plan.replay.open_loop)}};
-    j["accepted"] = plan.replay.accepted;
   }
+  if (plan.replay.ran || plan.optimization.ran) j["accepted"] = plan.replay.accepted;
   requireFiniteJson(j);
   writeAtomically(path, j.dump(1) + "\n");
 }
@@ -331,6 +331,8 @@ Plan readPlanJson(const std::string& path) {
       plan.replay.closed_loop.max_tracking_error =
           num(r.at("closed_loop"), "max_tracking_error", "replay.closed_loop");
       plan.replay.open_loop = result("open_loop");
+    }
+    if (plan.replay.ran || plan.optimization.ran) {
       const json& a = need(j, "accepted", "");
       if (!a.is_boolean()) throw InputError(path + ": accepted must be true or false");
       plan.replay.accepted = a.get<bool>();

@@ -29,7 +29,8 @@
 /// |                 | {`position_error` [m], `angle_error` [rad], `min_f_n` [N], |
 /// |                 | `phases`, `max_tracking_error` [rad or m]} and `open_loop` {the |
 /// |                 | same without `max_tracking_error`} |
-/// | `accepted`      | with `replay`: whether the optimised plan passed (plan_replay.h) |
+/// | `accepted`      | with `optimization` or `replay`: true when the optimised plan |
+/// |                 | passed the replay (plan_replay.h) and is the one in the file |
 ///
 /// CSV (writePlanCsv): one row per sample: t, q..., v..., tau..., f_n..., phase.
 /// Files are written to a temporary name and renamed; a plan with a NaN is refused.
