@@ -133,7 +133,10 @@ int run(int argc, char** argv) {
         static_cast<unsigned long long>(plan.propagations));
     int status = 0;
     if (!o.no_optimize) {
-      RefineOutcome refined = refinePlan(optimizer, rp.simulator(), plan, {});
+      planner::ReplaySettings replay;  // the planner's goal tolerances
+      replay.position_tolerance = settings.position_tolerance;
+      replay.angle_tolerance = settings.angle_tolerance;
+      RefineOutcome refined = refinePlan(optimizer, rp.simulator(), plan, replay);
       printRefineSummary(refined);
       if (!refined.accepted) {
         std::fprintf(stderr, "plan-reorientation: planner's plan kept: %s\n",
