@@ -21,6 +21,12 @@ struct OptimizerSettings {
   double duration_min_scale = 0.5;  ///< each phase's duration within [min, max] x planned
   double duration_max_scale = 2.0;
   double cone_margin = 0.9;         ///< sticking forces kept within margin * mu_s
+  /// \brief Sliding contacts keep the sign of the plan's slide over each run (xi may not
+  ///        move back), so the replay does not stick or reverse where the plan slides.
+  bool keep_slide_direction = true;
+  /// \brief true: the exact Hessian of the Lagrangian (nested AutoDiff and closed form);
+  ///        false: Ipopt's limited-memory (L-BFGS) approximation.
+  bool exact_hessian = true;
   int max_iterations = 500;         ///< Ipopt max_iter
   double tolerance = 1e-6;          ///< Ipopt tol
   double max_solve_time = 30.0;     ///< Ipopt max_wall_time [s]
