@@ -1,5 +1,6 @@
 #include "rbsf/trajopt/collocation_constraint.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -11,7 +12,11 @@ using layout::stroke;
 
 CollocationConstraint::CollocationConstraint(const RbsfModel& model, const DecisionLayout& layout,
                                              const Schedule& schedule)
-    : model_(model), layout_(layout), schedule_(schedule), n_(model.configDim()) {
+    : model_(model),
+      layout_(layout),
+      schedule_(schedule),
+      n_(model.configDim()),
+      inv_weight_(1.0 / (model.cell().object.mass * std::max(model.cell().gravity, 1.0))) {
   for (const PhaseRun& run : schedule_.runs) hbar_.push_back(run.duration / run.intervals);
   // Structure: AutoDiff at a generic point; an entry is structural when its derivative is
   // non-zero there (random values make accidental zeros a measure-zero event).
@@ -89,7 +94,7 @@ void CollocationConstraint::hessianStructure(HessianPattern& p) {
     for (int e = 0; e < 2; ++e) {
       const int kk = k + e, oq = layout_.q(kk), ov = layout_.v(kk);
       for (int i = 0; i < m; ++i) {  // contact wrenches
-        const int c6[6] = {oq + layout::kPhi, oq + kTheta,     oq + stroke(i),
+        const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
                            layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
         for (int a = 0; a < 6; ++a)
           for (int b = 0; b <= a; ++b) hess_slots_.push_back(p.slot(c6[a], c6[b]));
@@ -122,7 +127,7 @@ void CollocationConstraint::knotHessian(const ConstVectorRef& z, int kk, const d
   grad.setZero(layout_.knotSize());
   // Contact wrenches: lambda_v^T (G1_i f_n + T_i f_t) by nested AutoDiff.
   for (int i = 0; i < m; ++i) {
-    const int c6[6] = {oq + layout::kPhi, oq + kTheta,     oq + stroke(i),
+    const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
                        layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
     double x[6];
     for (int a = 0; a < 6; ++a) x[a] = z[c6[a]];
@@ -179,7 +184,8 @@ void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* la
     const double inv_hbar = 1.0 / hbar_[j];
     const double h = z[layout_.duration(j)] / N;
     const double* lq = lambda + 2 * n_ * k;
-    const double* lv = lq + n_;
+    double lv[kMaxConfig];  // D_v's multipliers with its weight scaling folded in
+    for (int a = 0; a < n_; ++a) lv[a] = lq[n_ + a] * inv_weight_;
     const double dv_theta = z[layout_.v(k + 1) + kTheta] - z[layout_.v(k) + kTheta];
     for (int e = 0; e < 2; ++e) {
       const int kk = k + e, oq = layout_.q(kk);

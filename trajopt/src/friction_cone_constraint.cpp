@@ -3,8 +3,7 @@
 namespace rbsf::trajopt {
 
 FrictionConeConstraint::FrictionConeConstraint(const DecisionLayout& layout,
-                                               const Schedule& schedule, double mu_s,
-                                               double margin)
+                                               const Schedule& schedule, double mu_s, double margin)
     : mu_(margin * mu_s) {
   for (int k = 0; k < layout.knots(); ++k)
     for (int i = 0; i < layout.fingers(); ++i)

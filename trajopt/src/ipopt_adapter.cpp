@@ -95,9 +95,8 @@ bool IpoptAdapter::intermediate_callback(Ipopt::AlgorithmMode, Index iter, Numbe
 }
 
 void IpoptAdapter::finalize_solution(Ipopt::SolverReturn, Index n, const Number* x, const Number*,
-                                     const Number*, Index m, const Number* g, const Number*,
-                                     Number, const Ipopt::IpoptData*,
-                                     Ipopt::IpoptCalculatedQuantities*) {
+                                     const Number*, Index m, const Number* g, const Number*, Number,
+                                     const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) {
   solution_ = Map(x, n);
   Eigen::VectorXd xl, xu, gl, gu;
   problem_.variables().bounds(xl, xu);

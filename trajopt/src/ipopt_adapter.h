@@ -28,8 +28,8 @@ class IpoptAdapter final : public Ipopt::TNLP {
   bool get_bounds_info(Ipopt::Index n, Ipopt::Number* x_l, Ipopt::Number* x_u, Ipopt::Index m,
                        Ipopt::Number* g_l, Ipopt::Number* g_u) override;
   bool get_starting_point(Ipopt::Index n, bool init_x, Ipopt::Number* x, bool init_z,
-                          Ipopt::Number* z_L, Ipopt::Number* z_U, Ipopt::Index m,
-                          bool init_lambda, Ipopt::Number* lambda) override;
+                          Ipopt::Number* z_L, Ipopt::Number* z_U, Ipopt::Index m, bool init_lambda,
+                          Ipopt::Number* lambda) override;
   bool eval_f(Ipopt::Index n, const Ipopt::Number* x, bool new_x,
               Ipopt::Number& obj_value) override;
   bool eval_grad_f(Ipopt::Index n, const Ipopt::Number* x, bool new_x,
@@ -40,9 +40,8 @@ class IpoptAdapter final : public Ipopt::TNLP {
                   Ipopt::Index nele_jac, Ipopt::Index* iRow, Ipopt::Index* jCol,
                   Ipopt::Number* values) override;
   bool eval_h(Ipopt::Index n, const Ipopt::Number* x, bool new_x, Ipopt::Number obj_factor,
-              Ipopt::Index m, const Ipopt::Number* lambda, bool new_lambda,
-              Ipopt::Index nele_hess, Ipopt::Index* iRow, Ipopt::Index* jCol,
-              Ipopt::Number* values) override;
+              Ipopt::Index m, const Ipopt::Number* lambda, bool new_lambda, Ipopt::Index nele_hess,
+              Ipopt::Index* iRow, Ipopt::Index* jCol, Ipopt::Number* values) override;
   bool intermediate_callback(Ipopt::AlgorithmMode mode, Ipopt::Index iter, Ipopt::Number obj_value,
                              Ipopt::Number inf_pr, Ipopt::Number inf_du, Ipopt::Number mu,
                              Ipopt::Number d_norm, Ipopt::Number regularization_size,

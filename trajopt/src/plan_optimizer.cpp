@@ -16,25 +16,44 @@ namespace {
 
 std::string statusName(Ipopt::ApplicationReturnStatus s) {
   switch (s) {
-    case Ipopt::Solve_Succeeded: return "Solve_Succeeded";
-    case Ipopt::Solved_To_Acceptable_Level: return "Solved_To_Acceptable_Level";
-    case Ipopt::Infeasible_Problem_Detected: return "Infeasible_Problem_Detected";
-    case Ipopt::Search_Direction_Becomes_Too_Small: return "Search_Direction_Becomes_Too_Small";
-    case Ipopt::Diverging_Iterates: return "Diverging_Iterates";
-    case Ipopt::User_Requested_Stop: return "User_Requested_Stop";
-    case Ipopt::Feasible_Point_Found: return "Feasible_Point_Found";
-    case Ipopt::Maximum_Iterations_Exceeded: return "Maximum_Iterations_Exceeded";
-    case Ipopt::Restoration_Failed: return "Restoration_Failed";
-    case Ipopt::Error_In_Step_Computation: return "Error_In_Step_Computation";
-    case Ipopt::Maximum_CpuTime_Exceeded: return "Maximum_CpuTime_Exceeded";
-    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "Not_Enough_Degrees_Of_Freedom";
-    case Ipopt::Invalid_Problem_Definition: return "Invalid_Problem_Definition";
-    case Ipopt::Invalid_Option: return "Invalid_Option";
-    case Ipopt::Invalid_Number_Detected: return "Invalid_Number_Detected";
-    case Ipopt::Unrecoverable_Exception: return "Unrecoverable_Exception";
-    case Ipopt::NonIpopt_Exception_Thrown: return "NonIpopt_Exception_Thrown";
-    case Ipopt::Insufficient_Memory: return "Insufficient_Memory";
-    case Ipopt::Internal_Error: return "Internal_Error";
+    case Ipopt::Solve_Succeeded:
+      return "Solve_Succeeded";
+    case Ipopt::Solved_To_Acceptable_Level:
+      return "Solved_To_Acceptable_Level";
+    case Ipopt::Infeasible_Problem_Detected:
+      return "Infeasible_Problem_Detected";
+    case Ipopt::Search_Direction_Becomes_Too_Small:
+      return "Search_Direction_Becomes_Too_Small";
+    case Ipopt::Diverging_Iterates:
+      return "Diverging_Iterates";
+    case Ipopt::User_Requested_Stop:
+      return "User_Requested_Stop";
+    case Ipopt::Feasible_Point_Found:
+      return "Feasible_Point_Found";
+    case Ipopt::Maximum_Iterations_Exceeded:
+      return "Maximum_Iterations_Exceeded";
+    case Ipopt::Restoration_Failed:
+      return "Restoration_Failed";
+    case Ipopt::Error_In_Step_Computation:
+      return "Error_In_Step_Computation";
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      return "Maximum_CpuTime_Exceeded";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom:
+      return "Not_Enough_Degrees_Of_Freedom";
+    case Ipopt::Invalid_Problem_Definition:
+      return "Invalid_Problem_Definition";
+    case Ipopt::Invalid_Option:
+      return "Invalid_Option";
+    case Ipopt::Invalid_Number_Detected:
+      return "Invalid_Number_Detected";
+    case Ipopt::Unrecoverable_Exception:
+      return "Unrecoverable_Exception";
+    case Ipopt::NonIpopt_Exception_Thrown:
+      return "NonIpopt_Exception_Thrown";
+    case Ipopt::Insufficient_Memory:
+      return "Insufficient_Memory";
+    case Ipopt::Internal_Error:
+      return "Internal_Error";
   }
   return "Unknown_Status";
 }
@@ -48,8 +67,8 @@ void checkPlan(const RbsfModel& model, const planner::Plan& plan) {
   auto bad = [](const std::string& what) {
     throw InputError("plan does not fit the cell: " + what);
   };
-  if (plan.q0.size() != n) bad("q0 has " + std::to_string(plan.q0.size()) + " entries, expected " +
-                               std::to_string(n));
+  if (plan.q0.size() != n)
+    bad("q0 has " + std::to_string(plan.q0.size()) + " entries, expected " + std::to_string(n));
   if (!(plan.time_step > 0.0)) bad("time_step must be positive");
   for (std::size_t s = 0; s < plan.segments.size(); ++s)
     if (plan.segments[s].tau.size() != nu || !(plan.segments[s].duration > 0.0))
@@ -107,25 +126,23 @@ OptimizedPlan PlanOptimizer::optimize(const planner::Plan& plan) const {
   Ipopt::OptionsList& o = *app->Options();
   o.SetStringValue("sb", "yes");
   o.SetStringValue("linear_solver", "mumps");
-  o.SetStringValue("hessian_approximation",
-                   settings_.exact_hessian ? "exact" : "limited-memory");
+  o.SetStringValue("hessian_approximation", settings_.exact_hessian ? "exact" : "limited-memory");
   o.SetIntegerValue("print_level", settings_.print_level);
   o.SetIntegerValue("max_iter", settings_.max_iterations);
   o.SetNumericValue("tol", settings_.tolerance);
   o.SetNumericValue("max_cpu_time", settings_.max_solve_time);
   if (settings_.derivative_test) {
-    o.SetStringValue("derivative_test", settings_.exact_hessian ? "second-order" : "first-order");
+    o.SetStringValue("derivative_test", "first-order");
     o.SetNumericValue("derivative_test_tol", 1e-5);
-    o.SetNumericValue("derivative_test_perturbation", 1e-6);
+    o.SetNumericValue("derivative_test_perturbation", 1e-8);  // Ipopt's default, stated
     if (!settings_.derivative_test_file.empty()) {
       o.SetStringValue("output_file", settings_.derivative_test_file);
       o.SetIntegerValue("file_print_level", 5);
     }
   }
   Ipopt::ApplicationReturnStatus status = app->Initialize();
-  Ipopt::SmartPtr<IpoptAdapter> nlp =
-      new IpoptAdapter(problem, settings_.exact_hessian, settings_.cancel,
-                       settings_.max_solve_time);
+  Ipopt::SmartPtr<IpoptAdapter> nlp = new IpoptAdapter(problem, settings_.exact_hessian,
+                                                       settings_.cancel, settings_.max_solve_time);
   if (status == Ipopt::Solve_Succeeded) status = app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
   summary.solve_time = elapsed();
   summary.status = nlp->wallTimeExceeded() ? "Maximum_WallTime_Exceeded" : statusName(status);
@@ -147,6 +164,11 @@ OptimizedPlan PlanOptimizer::optimize(const planner::Plan& plan) const {
   kept.cost_after = problem.effort(z);
   out.plan = problem.toPlan(z, plan);
   out.plan.optimization = kept;
+  const DecisionLayout& dl = problem.layout();
+  for (int k = 0; k < dl.knots(); ++k) {
+    out.f_t.push_back(z.segment(dl.ft(k), dl.fingers()));
+    out.xi.push_back(z.segment(dl.xi(k), dl.fingers()));
+  }
   out.success = true;
   return out;
 }

@@ -28,8 +28,8 @@ TrajectoryProblem::TrajectoryProblem(const RbsfModel& model, const planner::Plan
       *layout_, schedule_, model.cell().friction.mu_static, settings.cone_margin));
   costs_.push_back(std::make_unique<EffortCost>(model, *layout_, schedule_));
   if (settings.smoothness_weight > 0.0)
-    costs_.push_back(std::make_unique<SmoothnessCost>(model, *layout_, schedule_,
-                                                      settings.smoothness_weight));
+    costs_.push_back(
+        std::make_unique<SmoothnessCost>(model, *layout_, schedule_, settings.smoothness_weight));
   for (const auto& set : sets_) {
     offsets_.push_back(rows_);
     for (const auto& [r, c] : set->structure()) {
@@ -83,8 +83,7 @@ void TrajectoryProblem::jacobianValues(const ConstVectorRef& z, double* values) 
 
 double TrajectoryProblem::effort(const ConstVectorRef& z) const { return costs_[0]->value(z); }
 
-planner::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z,
-                                        const planner::Plan& input) const {
+planner::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z, const planner::Plan& input) const {
   const int n = model_.configDim(), nu = model_.controlDim(), m = model_.numFingers();
   planner::Plan out = input;
   out.segments.clear();
@@ -106,7 +105,8 @@ planner::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z,
     s.v = z.segment(layout_->v(k), n);
     s.tau = z.segment(layout_->tau(k), nu);
     s.f_n = z.segment(layout_->fn(k), m);
-    s.phase = schedule_.runs[schedule_.run_of_interval[std::min(k, layout_->intervals() - 1)]].phase;
+    s.phase =
+        schedule_.runs[schedule_.run_of_interval[std::min(k, layout_->intervals() - 1)]].phase;
     out.samples.push_back(s);
   }
   return out;
@@ -115,7 +115,8 @@ planner::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z,
 double planEffort(const RbsfModel& model, const planner::Plan& plan) {
   const VecU w = effortWeights(model);
   double J = 0.0;
-  for (const planner::PlanSegment& seg : plan.segments) J += seg.duration * seg.tau.cwiseAbs2().dot(w);
+  for (const planner::PlanSegment& seg : plan.segments)
+    J += seg.duration * seg.tau.cwiseAbs2().dot(w);
   return J;
 }
 

@@ -18,8 +18,7 @@
 namespace rbsf::trajopt {
 
 /// \brief Largest number of element-local variables: two knot blocks and one duration.
-inline constexpr int kMaxLocal =
-    2 * (2 * kMaxConfig + (kMaxFingers + 1) + 3 * kMaxFingers) + 1;
+inline constexpr int kMaxLocal = 2 * (2 * kMaxConfig + (kMaxFingers + 1) + 3 * kMaxFingers) + 1;
 /// \brief Derivative vector of the AutoDiff scalar (stack storage).
 using LocalDerivative = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLocal, 1>;
 /// \brief Forward-mode AutoDiff scalar over an element's local variables.
@@ -164,8 +163,8 @@ void knotRhs(const RbsfModel& model, const DecisionLayout& dl, const S* z, int o
   for (int i = 0; i < m; ++i) {
     const FingerParams& f = cell.fingers[i];
     const S L = q[layout::stroke(i)] + f.com_offset;
-    q_theta += 2.0 * f.mass * L * v[layout::stroke(i)] * theta_dot +
-               f.mass * g0 * (f.r * ct - L * st);
+    q_theta +=
+        2.0 * f.mass * L * v[layout::stroke(i)] * theta_dot + f.mass * g0 * (f.r * ct - L * st);
     r[layout::stroke(i)] = f.mass * L * theta_dot * theta_dot - f.mass * g0 * ct;
   }
   r[layout::kTheta] = -q_theta;

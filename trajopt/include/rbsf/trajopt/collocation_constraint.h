@@ -15,7 +15,9 @@ namespace rbsf::trajopt {
 /// \brief For interval k of run j (h = T_j / N_j; hbar_j = planned T_j / N_j, a constant
 ///        that only scales the rows), 2 (m + 4) rows, all = 0:
 ///   D_q = (q_{k+1} - q_k - h/2 (v_k + v_{k+1})) / hbar                          [m, rad]
-///   D_v = (1/2 (M(q_k) + M(q_{k+1})) (v_{k+1} - v_k) - h/2 (r_k + r_{k+1})) / hbar   [N, N m]
+///   D_v = (1/2 (M(q_k) + M(q_{k+1})) (v_{k+1} - v_k) - h/2 (r_k + r_{k+1})) / (hbar W_o)
+///   (D_v in units of the object's weight W_o = m_o max(g0, 1 m/s^2) [N, N m per N]: rows
+///   of order one, so a tolerance or a derivative check means the same on every row)
 /// with r = u(tau) + sum_i [G_i f_i ; -J_i^T f_i] - Q(q, v) and
 /// f_i = f_n,i n_i(xi_i) + f_t,i t_i(xi_i) in the world frame (knotRhs in ad_dynamics.h).
 /// (Multiplied by h rather than divided, so T_j enters linearly.)
@@ -61,6 +63,7 @@ class CollocationConstraint final : public ConstraintSet {
   const Schedule& schedule_;
   int n_;
   std::vector<double> hbar_;                        ///< per run [s]
+  double inv_weight_;                               ///< 1 / W_o [1/N]
   std::vector<std::pair<int, int>> local_pattern_;  ///< (row, local column)
   std::vector<std::pair<int, int>> structure_;
   std::vector<int> hess_slots_;
@@ -83,7 +86,8 @@ void CollocationConstraint::defect(const S* local, int k, ConfigVector<S>& out) 
   out.resize(2 * n_);
   for (int a = 0; a < n_; ++a) {
     out[a] = (local[ks + a] - local[a] - 0.5 * h * (local[ov + a] + local[ks + ov + a])) * inv_hbar;
-    out[n_ + a] = (0.5 * (Mdv0[a] + Mdv1[a]) - 0.5 * h * (r0[a] + r1[a])) * inv_hbar;
+    out[n_ + a] =
+        (0.5 * (Mdv0[a] + Mdv1[a]) - 0.5 * h * (r0[a] + r1[a])) * (inv_hbar * inv_weight_);
   }
 }
 

@@ -19,8 +19,7 @@ namespace rbsf::trajopt {
 /// of lambda_t (t . e) + lambda_n (n . e) by nested AutoDiff over the same six.
 class ContactConstraint final : public ConstraintSet {
  public:
-  ContactConstraint(const RbsfModel& model, const DecisionLayout& layout,
-                    const Schedule& schedule);
+  ContactConstraint(const RbsfModel& model, const DecisionLayout& layout, const Schedule& schedule);
 
   std::string name() const override { return "contact"; }
   int rows() const override { return 2 * m_ * layout_.knots(); }

@@ -28,9 +28,8 @@ struct OptimizerSettings;
 /// (unwrapped along the plan), f_t = 0; then clipped into the bounds.
 class DecisionVariables {
  public:
-  DecisionVariables(const RbsfModel& model, const DecisionLayout& layout,
-                    const Schedule& schedule, const planner::Plan& plan,
-                    const OptimizerSettings& settings);
+  DecisionVariables(const RbsfModel& model, const DecisionLayout& layout, const Schedule& schedule,
+                    const planner::Plan& plan, const OptimizerSettings& settings);
 
   void bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) const;
   Eigen::VectorXd initialGuess() const;
