@@ -1,6 +1,7 @@
 #include "refine_plan.h"
 
 #include <cmath>
+#include <exception>
 
 namespace rbsf::tools {
 
@@ -16,6 +17,17 @@ void finite(double& x, const char* what, std::string& note) {
 bool finiteReplay(const planner::ReplayResult& r) {
   return std::isfinite(r.position_error) && std::isfinite(r.angle_error) &&
          std::isfinite(r.min_f_n) && std::isfinite(r.max_tracking_error);
+}
+
+/// Every number the plan file would hold for the segments and samples is finite.
+bool finitePlan(const planner::Plan& p) {
+  for (const planner::PlanSegment& s : p.segments)
+    if (!std::isfinite(s.duration) || !s.tau.allFinite() || !s.tau_end.allFinite()) return false;
+  for (const planner::PlanSample& s : p.samples)
+    if (!std::isfinite(s.t) || !s.q.allFinite() || !s.v.allFinite() || !s.tau.allFinite() ||
+        !s.f_n.allFinite())
+      return false;
+  return true;
 }
 
 }  // namespace
@@ -36,9 +48,18 @@ RefineOutcome refinePlan(const trajopt::PlanOptimizer& optimizer, const Simulato
     out.reason = "optimisation failed (Ipopt status " + summary.status + ")";
     if (!summary.message.empty()) out.reason += ": " + summary.message;
   } else {
-    std::string why;
-    verdict = planner::verifyPlan(simulator, opt.plan, replay, &why);
-    if (!finiteReplay(verdict.closed_loop) || !finiteReplay(verdict.open_loop)) {
+    std::string why = "it holds a non-finite value";
+    if (finitePlan(opt.plan)) {
+      try {
+        verdict = planner::verifyPlan(simulator, opt.plan, replay, &why);
+      } catch (const std::exception& e) {  // e.g. a bad knot: not the user's input
+        verdict = {};
+        why = std::string("cannot replay it: ") + e.what();
+      }
+    }
+    if (!verdict.ran) {
+      out.reason = "optimised plan rejected: " + why;
+    } else if (!finiteReplay(verdict.closed_loop) || !finiteReplay(verdict.open_loop)) {
       verdict = {};  // a diverged replay is not written
       out.reason = "optimised plan rejected: its replay diverged (non-finite state)";
     } else if (!verdict.accepted) {
