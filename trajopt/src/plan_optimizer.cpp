@@ -89,6 +89,8 @@ PlanOptimizer::PlanOptimizer(const RbsfModel& model, OptimizerSettings settings)
   require(s.knots >= 2, "knots = " + std::to_string(s.knots) + " must be >= 2");
   require(std::isfinite(s.smoothness_weight) && s.smoothness_weight >= 0.0,
           "smoothness_weight must be finite and >= 0");
+  require(std::isfinite(s.force_weight) && s.force_weight >= 0.0,
+          "force_weight must be finite and >= 0");
   require(s.duration_min_scale > 0.0 && s.duration_min_scale <= 1.0,
           "duration_min_scale must be in (0, 1]");
   require(std::isfinite(s.duration_max_scale) && s.duration_max_scale >= 1.0,
