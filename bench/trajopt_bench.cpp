@@ -86,10 +86,10 @@ int main(int argc, char** argv) {
       const rbsf::planner::OptimizationSummary& o = out.plan.optimization;
       if (verbose)
         std::printf(
-            "  seed %d: %s (%s, %zu segments) %s, %d iterations, %.3f s, effort %.4f -> "
-            "%.4f %s\n",
+            "  seed %d: %s (%s, %zu segments) %s, %d iterations, %.3f s (cpu %.3f s), effort "
+            "%.4f -> %.4f %s\n",
             seed, c.label, plan.phaseSequence().c_str(), plan.segments.size(), o.status.c_str(),
-            o.iterations, o.solve_time, o.cost_before, o.cost_after, o.message.c_str());
+            o.iterations, o.solve_time, cpu, o.cost_before, o.cost_after, o.message.c_str());
       times.push_back(o.solve_time);
       iters.push_back(o.iterations);
       if (out.success) {
