@@ -127,7 +127,7 @@ V readVec(const json& j, const std::string& what) {
 
 }  // namespace
 
-void writePlanJson(const Plan& plan, const std::string& path) {
+std::string planJsonText(const Plan& plan, const PlanFileOptions& options) {
   json segs = json::array();
   for (const PlanSegment& s : plan.segments)
     segs.push_back({{"phase", std::string(toString(s.phase))},
@@ -146,7 +146,7 @@ void writePlanJson(const Plan& plan, const std::string& path) {
   j["status"] = plan.status;
   j["planner"] = plan.planner;
   j["seed"] = plan.seed;
-  j["planning_time"] = plan.planning_time;
+  if (options.wall_clock) j["planning_time"] = plan.planning_time;
   j["propagations"] = plan.propagations;
   j["goal_distance"] = plan.goal_distance;
   j["time_step"] = plan.time_step;
@@ -159,10 +159,18 @@ void writePlanJson(const Plan& plan, const std::string& path) {
   j["segments"] = segs;
   j["samples"] = samples;
   requireFiniteJson(j);
-  writeAtomically(path, j.dump(1) + "\n");
+  return j.dump(1) + "\n";
+}
+
+void writePlanJson(const Plan& plan, const std::string& path, const PlanFileOptions& options) {
+  writeAtomically(path, planJsonText(plan, options));
 }
 
 void writePlanCsv(const Plan& plan, const std::string& path) {
+  writeAtomically(path, planCsvText(plan));
+}
+
+std::string planCsvText(const Plan& plan) {
   if (plan.q0.size() == 0) throw std::runtime_error("empty plan");
   const int n = static_cast<int>(plan.q0.size()), m = n - 4;
   std::string text = "t";
@@ -200,15 +208,20 @@ void writePlanCsv(const Plan& plan, const std::string& path) {
     text += toString(s.phase);
     text += '\n';
   }
-  writeAtomically(path, text);
+  return text;
 }
 
 Plan readPlanJson(const std::string& path) {
-  std::ifstream f(path);
+  std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(path + ": cannot open");
+  const std::string text(std::istreambuf_iterator<char>(f), {});
+  return parsePlanJson(text, path);
+}
+
+Plan parsePlanJson(std::string_view text, const std::string& path) {
   json j;
   try {
-    j = json::parse(f);
+    j = json::parse(text);
   } catch (const json::exception& e) {
     throw InputError(path + ": not JSON: " + e.what());
   }
@@ -233,7 +246,7 @@ Plan readPlanJson(const std::string& path) {
       throw InputError(path + ": status must be \"exact\" or \"approximate\"");
     plan.planner = need(j, "planner", "").get<std::string>();
     plan.seed = need(j, "seed", "").get<std::uint32_t>();
-    plan.planning_time = num(j, "planning_time", "");
+    if (j.contains("planning_time")) plan.planning_time = num(j, "planning_time", "");
     plan.propagations = need(j, "propagations", "").get<std::uint64_t>();
     plan.goal_distance = num(j, "goal_distance", "");
     plan.time_step = num(j, "time_step", "");

@@ -3,7 +3,7 @@
 //
 // Exit status: 0 exact solution; 3 time limit without one (best distance printed);
 // 2 bad input (option, value, cell, a start the fingers cannot hold, a goal no finger
-// reaches); 1 internal error.
+// reaches); 130 stopped by SIGINT (best plan so far written); 1 internal error.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -11,9 +11,11 @@
 #include <cstdio>
 #include <iostream>
 
+#include "plan_outputs.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/tools/cli_values.h"
+#include "rbsf/tools/interrupt.h"
 #include "rbsf/tools/tool_main.h"
 
 namespace rbsf::tools {
@@ -23,8 +25,8 @@ constexpr int kExitTimeLimit = 3;
 
 struct Options {
   std::string cell, start, goal, start_theta = "0", planner = "KPIECE1", time_limit = "30",
-                                 seed = "1", out, csv;
-  bool quiet = false;
+                                 seed = "1", out, csv, svg, report, svg_still = "0";
+  bool quiet = false, reproducible = false;
 };
 
 int run(int argc, char** argv) {
@@ -36,7 +38,8 @@ int run(int argc, char** argv) {
   app.footer(
       "Exit status: 0 exact solution; 3 time limit without one (best distance printed); 2 bad "
       "input (option, value, file, a start the fingers cannot hold, a goal no finger "
-      "reaches), with one message on stderr; 1 internal error.");
+      "reaches), with one message on stderr; 130 stopped by SIGINT (Ctrl-C: the best plan so far "
+      "is written; a second Ctrl-C exits at once, writing nothing); 1 internal error.");
   Options o;
   app.add_option("--cell", o.cell, "cell YAML file")->required();
   app.add_option("--start", o.start, "start pose x,y,phi (part at rest)")->required();
@@ -47,8 +50,16 @@ int run(int argc, char** argv) {
   app.add_option("--seed", o.seed, "random seed, positive integer (default 1)");
   app.add_option("--out", o.out, "write the plan as JSON");
   app.add_option("--csv", o.csv, "write the sampled trajectory as CSV");
+  app.add_option("--svg", o.svg, "write an animated SVG of the plan");
+  app.add_option("--report", o.report, "write an HTML page: animation and plots over time");
+  app.add_option("--svg-still", o.svg_still, "time [s] of the frame non-animating viewers show");
+  app.add_flag("--reproducible", o.reproducible,
+               "leave wall-clock fields (planning_time) out of the files: the same seed gives "
+               "byte-identical files");
   app.add_flag("--quiet", o.quiet, "no progress line");
   parseCommandLine(app, argc, argv);
+  const PlanOutputs outputs({o.out, o.csv, o.svg, o.report, o.reproducible,
+                             parseNumber(o.svg_still, "--svg-still"), o.cell});
 
   planner::PlannerSettings settings;
   settings.planner = o.planner;
@@ -73,14 +84,18 @@ int run(int argc, char** argv) {
     };
   }
   const RbsfModel model(loadCell(o.cell));
+  settings.cancel = &InterruptFlag::install();  // Ctrl-C: stop and write the best so far
   planner::ReorientationPlanner rp(model, settings);
   rp.checkProblem(problem);  // bad input before any search
   planner::Plan plan;
   const bool found = rp.solve(problem, plan);
   if (tty) std::fprintf(stderr, "\n");
-  if (found) {
-    if (!o.out.empty()) planner::writePlanJson(plan, o.out);
-    if (!o.csv.empty()) planner::writePlanCsv(plan, o.csv);
+  if (found) outputs.write(model, plan);
+  if (InterruptFlag::raised()) {
+    std::printf("interrupted: best distance %.3g (tolerance units)%s; %llu propagations\n",
+                rp.bestDistance(), found && outputs.any() ? ", best plan so far written" : "",
+                static_cast<unsigned long long>(rp.propagations()));
+    return kExitInterrupted;
   }
   if (found && plan.status == "exact") {
     std::printf(
@@ -94,7 +109,7 @@ int run(int argc, char** argv) {
       "no exact plan within %.3g s: best distance %.3g (tolerance units: 1 = 1 cm or "
       "2 deg)%s; %llu propagations\n",
       settings.time_limit, rp.bestDistance(),
-      found && !o.out.empty() ? ", approximate plan written" : "",
+      found && outputs.any() ? ", approximate plan written" : "",
       static_cast<unsigned long long>(rp.propagations()));
   return kExitTimeLimit;
 }
