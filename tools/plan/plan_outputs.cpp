@@ -3,6 +3,7 @@
 
 #include "plan_outputs.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -49,13 +50,22 @@ bool PlanOutputs::any() const {
 
 std::vector<TrajectorySample> PlanOutputs::frames(const RbsfModel& model,
                                                   const planner::Plan& plan) {
-  std::vector<TrajectorySample> frames;
-  for (const planner::PlanSample& s : plan.samples)
-    frames.push_back({s.t, s.q, s.v, s.tau, s.f_n, s.phase});
-  if (frames.empty()) {  // no motion: the part at rest at the start
-    const int m = model.numFingers();
-    frames.push_back({0.0, plan.q0, VecQ::Zero(layout::configDim(m)),
-                      VecU::Zero(layout::controlDim(m)), VecC::Zero(m), Phase::kC});
+  // Filled in place: element-wise copies keep GCC 12's -Wstringop-overflow false positive
+  // on moved fixed-capacity Eigen vectors away.
+  const int m = model.numFingers();
+  std::vector<TrajectorySample> frames(std::max<std::size_t>(plan.samples.size(), 1));
+  for (std::size_t k = 0; k < plan.samples.size(); ++k) {
+    const planner::PlanSample& s = plan.samples[k];
+    TrajectorySample& f = frames[k];
+    f.t = s.t, f.q = s.q, f.v = s.v, f.tau = s.tau, f.f_n = s.f_n, f.phase = s.phase;
+  }
+  if (plan.samples.empty()) {  // no motion: the part at rest at the start
+    TrajectorySample& f = frames[0];
+    f.q = plan.q0;
+    f.v = VecQ::Zero(layout::configDim(m));
+    f.tau = VecU::Zero(layout::controlDim(m));
+    f.f_n = VecC::Zero(m);
+    f.phase = Phase::kC;
   }
   return frames;
 }
