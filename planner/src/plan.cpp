@@ -119,7 +119,8 @@ V readVec(const json& j, const std::string& what) {
   if (!j.is_array()) throw InputError(what + " must be an array of numbers");
   V v(static_cast<int>(j.size()));
   for (size_t k = 0; k < j.size(); ++k) {
-    if (!j[k].is_number()) throw InputError(what + " must be an array of numbers");
+    if (!j[k].is_number() || !std::isfinite(j[k].get<double>()))
+      throw InputError(what + " must be an array of finite numbers");
     v[static_cast<int>(k)] = j[k].get<double>();
   }
   return v;
@@ -232,8 +233,28 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
   };
   auto num = [&](const json& o, const char* key, const std::string& where) {
     const json& v = need(o, key, where);
-    if (!v.is_number()) throw InputError(path + ": " + where + key + " must be a number");
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
+      throw InputError(path + ": " + where + key + " must be a finite number");
     return v.get<double>();
+  };
+  // Integers are checked before conversion: a float or an out-of-range value cast to an
+  // integer type is undefined behaviour (found by tests/fuzz/fuzz_plan.cpp).
+  auto integer = [&](const json& o, const char* key, const std::string& where, double lo,
+                     double hi) {
+    const json& v = need(o, key, where);
+    bool ok = false;
+    if (v.is_number_unsigned()) {
+      const auto u = static_cast<double>(v.get<std::uint64_t>());
+      ok = u >= lo && u <= hi;
+    } else if (v.is_number_integer()) {
+      const auto i = static_cast<double>(v.get<std::int64_t>());
+      ok = i >= lo && i <= hi;
+    }
+    if (!ok)
+      throw InputError(path + ": " + where + key + " must be an integer in [" +
+                       std::to_string(static_cast<std::uint64_t>(lo)) + ", " +
+                       std::to_string(static_cast<std::uint64_t>(hi)) + "]");
+    return v.get<std::uint64_t>();
   };
   auto pose = [&](const char* key) {
     const json& p = need(j, key, "");
@@ -245,12 +266,13 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
     if (plan.status != "exact" && plan.status != "approximate")
       throw InputError(path + ": status must be \"exact\" or \"approximate\"");
     plan.planner = need(j, "planner", "").get<std::string>();
-    plan.seed = need(j, "seed", "").get<std::uint32_t>();
+    plan.seed = static_cast<std::uint32_t>(integer(j, "seed", "", 0, 4294967295.0));
     if (j.contains("planning_time")) plan.planning_time = num(j, "planning_time", "");
-    plan.propagations = need(j, "propagations", "").get<std::uint64_t>();
+    plan.propagations = integer(j, "propagations", "", 0, 1e18);
     plan.goal_distance = num(j, "goal_distance", "");
     plan.time_step = num(j, "time_step", "");
-    plan.steps_per_control = need(j, "steps_per_control", "").get<int>();
+    if (plan.time_step <= 0.0) throw InputError(path + ": time_step must be positive");
+    plan.steps_per_control = static_cast<int>(integer(j, "steps_per_control", "", 1, 1e6));
     plan.start = pose("start");
     plan.goal = pose("goal");
     plan.start_theta = num(j, "start_theta", "");
@@ -261,7 +283,7 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
       PlanSegment seg;
       seg.phase = parsePhase(need(s, "phase", "segments[]").get<std::string>());
       seg.duration = num(s, "duration", "segments[].");
-      seg.steps = need(s, "steps", "segments[]").get<int>();
+      seg.steps = static_cast<int>(integer(s, "steps", "segments[].", 1, 1e9));
       seg.tau = readVec<VecU>(need(s, "tau", "segments[]"), path + ": segments[].tau");
       if (seg.tau.size() != n - 3 || seg.steps < 1)
         throw InputError(path + ": segments[] needs steps >= 1 and m + 1 taus");

@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "rbsf/dynamics/errors.h"
@@ -119,6 +121,46 @@ TEST(PlanFile, ReproducibleTextLeavesPlanningTimeOutAndStillParses) {
   EXPECT_EQ(planner::parsePlanJson(full, "<text>").planning_time, 1.25);
   // Text and file readers agree.
   EXPECT_EQ(planner::planJsonText(back, o), repro);
+}
+
+TEST(PlanFile, OutOfRangeIntegersAndNonFiniteNumbersAreInputErrors) {
+  // Found with tests/fuzz/fuzz_plan.cpp under UBSan: a float or out-of-range value was cast to
+  // int / uint32 / uint64 (undefined behaviour), a negative seed wrapped around; a zero step
+  // count or time step was accepted.
+  const nlohmann::json good = nlohmann::json::parse(planner::planJsonText(tinyPlan()));
+  ASSERT_NO_THROW(planner::parsePlanJson(good.dump(), "<good>"));
+  struct Case {
+    std::string edit, needle;
+  };
+  auto with = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json j = good;
+    edit(j);
+    return j.dump();
+  };
+  const std::pair<std::string, std::string> cases[] = {
+      {with([](auto& j) { j["segments"][0]["steps"] = 1e30; }),
+       "segments[].steps must be an integer"},
+      {with([](auto& j) { j["segments"][0]["steps"] = 0; }), "segments[].steps must be an integer"},
+      {with([](auto& j) { j["seed"] = 1e20; }), "seed must be an integer"},
+      {with([](auto& j) { j["seed"] = -5; }), "seed must be an integer"},
+      {with([](auto& j) { j["propagations"] = 1e30; }), "propagations must be an integer"},
+      {with([](auto& j) { j["steps_per_control"] = 2.5; }), "steps_per_control must be an integer"},
+      {with([](auto& j) { j["time_step"] = 0.0; }), "time_step must be positive"},
+      {[&] {
+         std::string t = good.dump();
+         const std::string key = "\"goal_distance\":0.0";
+         return t.replace(t.find(key), key.size(), "\"goal_distance\":1e400");
+       }(),
+       "number overflow"},  // refused by the JSON parser itself
+  };
+  for (const auto& [text, needle] : cases) {
+    try {
+      planner::parsePlanJson(text, "<case>");
+      ADD_FAILURE() << "accepted: " << needle;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace
