@@ -79,8 +79,8 @@ void PlanOutputs::write(const RbsfModel& model, const planner::Plan& plan) const
   if (!o_.svg.empty() || !o_.report.empty()) {
     SvgAnimationOptions a;
     a.title = "plan-reorientation: " + o_.cell_label;
-    a.subtitle = plan.status + " plan, phases " + plan.phaseSequence() + ", start " +
-                 poseText(plan.start) + " -> goal " + poseText(plan.goal);
+    a.subtitle = plan.status + " plan from " + poseText(plan.start) + " to " + poseText(plan.goal) +
+                 " (dashed)";
     a.goal = plan.goal;
     a.still_time = o_.svg_still;
     if (!o_.svg.empty())
