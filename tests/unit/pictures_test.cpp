@@ -197,6 +197,17 @@ TEST_F(PicturesTest, ReportHasTheAnimationAndFivePlotsOfEverySample) {
   EXPECT_EQ(count(pts, ","), frames.size());
 }
 
+TEST(NiceTicks, HugeOrFarFromZeroRangesStayFinite) {
+  for (const auto& [lo, hi] : std::vector<std::pair<double, double>>{
+           {1e300, 1.0000001e300}, {-1e308, 1e308}, {1e19, 1e19 + 4096}}) {
+    const auto t = niceTicks(lo, hi, 5);
+    ASSERT_GE(t.size(), 2u);
+    EXPECT_LE(t.size(), 101u);
+    EXPECT_LE(t.front(), lo);
+    EXPECT_GE(t.back(), hi);
+  }
+}
+
 TEST(NiceTicks, CoverTheRangeWithOneTwoOrFiveSteps) {
   for (const auto& [lo, hi] : std::vector<std::pair<double, double>>{
            {0.0, 2.34}, {-57.3, 8.2}, {0.05, 0.55}, {3.0, 3.0}, {-1e-3, 2e-3}}) {

@@ -16,6 +16,7 @@ std::vector<double> niceTicks(double lo, double hi, int target) {
     const double pad = std::max(1.0, std::abs(lo)) * 0.5;
     lo -= pad, hi += pad;
   }
+  if (!std::isfinite(hi - lo)) return {lo, hi};
   const double raw = (hi - lo) / std::max(1, target);
   const double p = std::pow(10.0, std::floor(std::log10(raw)));
   double step = 10 * p;
@@ -26,9 +27,11 @@ std::vector<double> niceTicks(double lo, double hi, int target) {
     }
   }
   std::vector<double> ticks;
-  const long first = static_cast<long>(std::floor(lo / step + 1e-9));
-  const long last = static_cast<long>(std::ceil(hi / step - 1e-9));
-  for (long k = first; k <= last; ++k) ticks.push_back(k * step);
+  const double first = std::floor(lo / step + 1e-9), last = std::ceil(hi / step - 1e-9);
+  // In doubles: a range far from zero would overflow an integer index. Far beyond the
+  // resolution of a double (or beyond 100 ticks) the ends alone are the ticks.
+  if (!(last - first <= 100.0) || first + 1.0 == first) return {lo, hi};
+  for (double k = first; k <= last; k += 1.0) ticks.push_back(k * step);
   return ticks;
 }
 
