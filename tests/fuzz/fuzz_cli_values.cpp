@@ -25,8 +25,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace rbsf::tools;
   try {
     switch (selector) {
-      case 0: requireFinite(parseNumber(text, "--x")); break;
-      case 1: requireFinite(parseAngle(text, "--x")); break;
+      case 0:
+        requireFinite(parseNumber(text, "--x"));
+        break;
+      case 1:
+        requireFinite(parseAngle(text, "--x"));
+        break;
       case 2:
         for (const double x : parseVector(text, "--x", static_cast<std::size_t>(n % 16)))
           requireFinite(x);
