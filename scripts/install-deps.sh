@@ -11,6 +11,8 @@ packages=(
   coinor-libipopt-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libxml2-utils
+  clang-14 libclang-rt-14-dev
 )
 
 missing=()

@@ -3,6 +3,8 @@
 #   scripts/rbsf.sh run       install what is missing, build Release, plan the 180 degree turn
 #   scripts/rbsf.sh test      install what is missing, build Release, run the whole test suite
 #   scripts/rbsf.sh sanitize  build with AddressSanitizer + UBSan and run the unit tests
+#   scripts/rbsf.sh fuzz      build the libFuzzer targets (clang, ASan + UBSan) and run each
+#                             for a bounded time (RBSF_FUZZ_SECONDS, default 40); fails on a crash
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"
@@ -44,8 +46,31 @@ case "$cmd" in
       LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp" \
       ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
     ;;
+  fuzz)
+    ./scripts/install-deps.sh
+    cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DCMAKE_CXX_COMPILER=clang++-14 -DRBSF_FUZZ=ON -DRBSF_BUILD_TESTS=OFF \
+      -DRBSF_BUILD_BENCHMARKS=OFF >/dev/null
+    cmake --build build-fuzz -j "$jobs" --target rbsf_fuzz_cell rbsf_fuzz_plan rbsf_fuzz_cli_values
+    seconds="${RBSF_FUZZ_SECONDS:-40}"
+    for target in cell plan cli_values; do
+      # A scratch copy of the seeds: what the run discovers never lands in the repository.
+      corpus="build-fuzz/corpus/$target"
+      rm -rf "$corpus" && mkdir -p "$corpus"
+      cp tests/fuzz/corpus/"$target"/* "$corpus"/ 2>/dev/null || true
+      [ "$target" = cell ] && cp cells/*.yaml "$corpus"/
+      echo "fuzz: rbsf_fuzz_$target for ${seconds} s"
+      ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp" \
+        "build-fuzz/tests/fuzz/rbsf_fuzz_$target" -max_total_time="$seconds" -timeout=10 \
+        -max_len=16384 -print_final_stats=1 -artifact_prefix="build-fuzz/crash-$target-" \
+        "$corpus" 2>"build-fuzz/fuzz-$target.log" ||
+        { tail -n 60 "build-fuzz/fuzz-$target.log" >&2; echo "fuzz: rbsf_fuzz_$target failed" >&2; exit 1; }
+      grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb" "build-fuzz/fuzz-$target.log" || true
+    done
+    ;;
   *)
-    echo "usage: scripts/rbsf.sh run|test|sanitize" >&2
+    echo "usage: scripts/rbsf.sh run|test|sanitize|fuzz" >&2
     exit 2
     ;;
 esac

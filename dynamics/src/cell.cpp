@@ -163,13 +163,15 @@ std::shared_ptr<const Shape> readShape(const Reader& rd, const YAML::Node& n) {
     rd.mapping(n, path, {"type", "a", "b", "center"});
     const double a = positive("a"), b = positive("b");
     const auto [cx, cy] = rd.pair(n, path, "center", false);
-    return build([&] { return std::make_shared<EllipseShape>(a, b, Vec2(cx, cy)); });
+    const Vec2 center(cx, cy);  // a plain variable: clang 14 cannot capture bindings
+    return build([&] { return std::make_shared<EllipseShape>(a, b, center); });
   }
   if (type == "circle") {
     rd.mapping(n, path, {"type", "radius", "center"});
     const double r = positive("radius");
     const auto [cx, cy] = rd.pair(n, path, "center", false);
-    return build([&] { return std::make_shared<CircleShape>(r, Vec2(cx, cy)); });
+    const Vec2 center(cx, cy);  // a plain variable: clang 14 cannot capture bindings
+    return build([&] { return std::make_shared<CircleShape>(r, center); });
   }
   if (type == "superellipse") {
     rd.mapping(n, path, {"type", "a", "b", "exponent", "center"});
@@ -177,7 +179,8 @@ std::shared_ptr<const Shape> readShape(const Reader& rd, const YAML::Node& n) {
     const double e = rd.number(n, path, "exponent");
     if (e < 2 || e > 20) rd.fail(path + ".exponent must lie in [2, 20] (got " + fmt(e) + ")");
     const auto [cx, cy] = rd.pair(n, path, "center", false);
-    return build([&] { return std::make_shared<SuperellipseShape>(a, b, e, Vec2(cx, cy)); });
+    const Vec2 center(cx, cy);  // a plain variable: clang 14 cannot capture bindings
+    return build([&] { return std::make_shared<SuperellipseShape>(a, b, e, center); });
   }
   rd.fail(path + ".type '" + type + "' is unknown (expected ellipse, circle or superellipse)");
 }

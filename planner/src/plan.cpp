@@ -126,7 +126,8 @@ V readVec(const json& j, const std::string& what) {
   if (!j.is_array()) throw InputError(what + " must be an array of numbers");
   V v(static_cast<int>(j.size()));
   for (size_t k = 0; k < j.size(); ++k) {
-    if (!j[k].is_number()) throw InputError(what + " must be an array of numbers");
+    if (!j[k].is_number() || !std::isfinite(j[k].get<double>()))
+      throw InputError(what + " must be an array of finite numbers");
     v[static_cast<int>(k)] = j[k].get<double>();
   }
   return v;
@@ -134,7 +135,7 @@ V readVec(const json& j, const std::string& what) {
 
 }  // namespace
 
-void writePlanJson(const Plan& plan, const std::string& path) {
+std::string planJsonText(const Plan& plan, const PlanFileOptions& options) {
   json segs = json::array();
   for (const PlanSegment& s : plan.segments) {
     json seg = {{"phase", std::string(toString(s.phase))},
@@ -156,7 +157,7 @@ void writePlanJson(const Plan& plan, const std::string& path) {
   j["status"] = plan.status;
   j["planner"] = plan.planner;
   j["seed"] = plan.seed;
-  j["planning_time"] = plan.planning_time;
+  if (options.wall_clock) j["planning_time"] = plan.planning_time;
   j["propagations"] = plan.propagations;
   j["goal_distance"] = plan.goal_distance;
   j["time_step"] = plan.time_step;
@@ -172,9 +173,9 @@ void writePlanJson(const Plan& plan, const std::string& path) {
     const OptimizationSummary& o = plan.optimization;
     j["optimization"] = {{"status", o.status},
                          {"iterations", o.iterations},
-                         {"solve_time", o.solve_time},
                          {"cost_before", o.cost_before},
                          {"cost_after", o.cost_after}};
+    if (options.wall_clock) j["optimization"]["solve_time"] = o.solve_time;
     if (!o.message.empty()) j["optimization"]["message"] = o.message;
   }
   if (plan.replay.ran) {
@@ -184,10 +185,18 @@ void writePlanJson(const Plan& plan, const std::string& path) {
   }
   if (plan.replay.ran || plan.optimization.ran) j["accepted"] = plan.replay.accepted;
   requireFiniteJson(j);
-  writeAtomically(path, j.dump(1) + "\n");
+  return j.dump(1) + "\n";
+}
+
+void writePlanJson(const Plan& plan, const std::string& path, const PlanFileOptions& options) {
+  writeAtomically(path, planJsonText(plan, options));
 }
 
 void writePlanCsv(const Plan& plan, const std::string& path) {
+  writeAtomically(path, planCsvText(plan));
+}
+
+std::string planCsvText(const Plan& plan) {
   if (plan.q0.size() == 0) throw std::runtime_error("empty plan");
   const int n = static_cast<int>(plan.q0.size()), m = n - 4;
   std::string text = "t";
@@ -225,15 +234,20 @@ void writePlanCsv(const Plan& plan, const std::string& path) {
     text += toString(s.phase);
     text += '\n';
   }
-  writeAtomically(path, text);
+  return text;
 }
 
 Plan readPlanJson(const std::string& path) {
-  std::ifstream f(path);
+  std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(path + ": cannot open");
+  const std::string text(std::istreambuf_iterator<char>(f), {});
+  return parsePlanJson(text, path);
+}
+
+Plan parsePlanJson(std::string_view text, const std::string& path) {
   json j;
   try {
-    j = json::parse(f);
+    j = json::parse(text);
   } catch (const json::exception& e) {
     throw InputError(path + ": not JSON: " + e.what());
   }
@@ -244,10 +258,30 @@ Plan readPlanJson(const std::string& path) {
   };
   auto num = [&](const json& o, const char* key, const std::string& where) {
     const json& v = need(o, key, where);
-    if (!v.is_number())
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
       throw InputError(path + ": " + where + (where.empty() ? "" : ".") + key +
-                       " must be a number");
+                       " must be a finite number");
     return v.get<double>();
+  };
+  // Integers are checked before conversion: a float or an out-of-range value cast to an
+  // integer type is undefined behaviour (found by tests/fuzz/fuzz_plan.cpp).
+  auto integer = [&](const json& o, const char* key, const std::string& where, double lo,
+                     double hi) {
+    const json& v = need(o, key, where);
+    bool ok = false;
+    if (v.is_number_unsigned()) {
+      const auto u = static_cast<double>(v.get<std::uint64_t>());
+      ok = u >= lo && u <= hi;
+    } else if (v.is_number_integer()) {
+      const auto i = static_cast<double>(v.get<std::int64_t>());
+      ok = i >= lo && i <= hi;
+    }
+    if (!ok)
+      throw InputError(path + ": " + where + (where.empty() ? "" : ".") + key +
+                       " must be an integer in [" +
+                       std::to_string(static_cast<std::uint64_t>(lo)) + ", " +
+                       std::to_string(static_cast<std::uint64_t>(hi)) + "]");
+    return v.get<std::uint64_t>();
   };
   auto pose = [&](const char* key) {
     const json& p = need(j, key, "");
@@ -259,12 +293,13 @@ Plan readPlanJson(const std::string& path) {
     if (plan.status != "exact" && plan.status != "approximate")
       throw InputError(path + ": status must be \"exact\" or \"approximate\"");
     plan.planner = need(j, "planner", "").get<std::string>();
-    plan.seed = need(j, "seed", "").get<std::uint32_t>();
-    plan.planning_time = num(j, "planning_time", "");
-    plan.propagations = need(j, "propagations", "").get<std::uint64_t>();
+    plan.seed = static_cast<std::uint32_t>(integer(j, "seed", "", 0, 4294967295.0));
+    if (j.contains("planning_time")) plan.planning_time = num(j, "planning_time", "");
+    plan.propagations = integer(j, "propagations", "", 0, 1e18);
     plan.goal_distance = num(j, "goal_distance", "");
     plan.time_step = num(j, "time_step", "");
-    plan.steps_per_control = need(j, "steps_per_control", "").get<int>();
+    if (plan.time_step <= 0.0) throw InputError(path + ": time_step must be positive");
+    plan.steps_per_control = static_cast<int>(integer(j, "steps_per_control", "", 1, 1e6));
     plan.start = pose("start");
     plan.goal = pose("goal");
     plan.start_theta = num(j, "start_theta", "");
@@ -275,7 +310,7 @@ Plan readPlanJson(const std::string& path) {
       PlanSegment seg;
       seg.phase = parsePhase(need(s, "phase", "segments[]").get<std::string>());
       seg.duration = num(s, "duration", "segments[]");
-      seg.steps = need(s, "steps", "segments[]").get<int>();
+      seg.steps = static_cast<int>(integer(s, "steps", "segments[]", 1, 1e9));
       seg.tau = readVec<VecU>(need(s, "tau", "segments[]"), path + ": segments[].tau");
       if (seg.tau.size() != n - 3 || seg.steps < 1)
         throw InputError(path + ": segments[] needs steps >= 1 and m + 1 taus");
@@ -308,8 +343,8 @@ Plan readPlanJson(const std::string& path) {
       OptimizationSummary& s = plan.optimization;
       s.ran = true;
       s.status = text(o, "status", "optimization");
-      s.iterations = static_cast<int>(num(o, "iterations", "optimization"));
-      s.solve_time = num(o, "solve_time", "optimization");
+      s.iterations = static_cast<int>(integer(o, "iterations", "optimization", 0, 1e9));
+      if (o.contains("solve_time")) s.solve_time = num(o, "solve_time", "optimization");
       s.cost_before = num(o, "cost_before", "optimization");
       s.cost_after = num(o, "cost_after", "optimization");
       if (o.contains("message")) s.message = text(o, "message", "optimization");

@@ -1,6 +1,8 @@
 // The command-line tools as a user runs them: exit status, messages, JSON output.
 #include <gtest/gtest.h>
 
+#include "cli_support.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,39 +17,10 @@
 
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path);
-  return std::string(std::istreambuf_iterator<char>(f), {});
-}
-
-/// Run a shell command line, capturing stdout and stderr separately.
-Result run(const std::string& args) {
-  static int counter = 0;
-  const std::string base = ::testing::TempDir() + "rbsf_cli_" + std::to_string(getpid()) + "_" +
-                           std::to_string(counter++);
-  const std::string cmd = args + " >" + base + ".out 2>" + base + ".err";
-  const int raw = std::system(cmd.c_str());
-  Result r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(base + ".out");
-  r.err = slurp(base + ".err");
-  return r;
-}
+using namespace rbsf::cli_test;
 
 const std::string kAnalyze = RBSF_ANALYZE_EXE;
 const std::string kCells = std::string(RBSF_SOURCE_DIR) + "/cells/";
-
-std::string writeTemp(const std::string& name, const std::string& text) {
-  // ctest runs each case in its own process, in parallel: names carry the pid.
-  const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_" + name;
-  std::ofstream(path) << text;
-  return path;
-}
 
 TEST(Analyze, JsonHasEveryKeyForTheDefaultRestingPose) {
   const Result r = run(kAnalyze + " --cell " + kCells + "default.yaml --pose 0.1,0.40,0 --json");

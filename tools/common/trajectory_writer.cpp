@@ -3,18 +3,16 @@
 
 #include "rbsf/tools/trajectory_writer.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/tools/atomic_file.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
 
@@ -108,21 +106,7 @@ void TrajectoryWriter::commit() const {
   } else {
     writeJson(text);
   }
-  const std::string tmp = path_ + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError("--out: cannot write '" + path_ + "'");
-    out << text.str();
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw InputError("--out: cannot write '" + path_ + "'");
-    }
-  }
-  if (std::rename(tmp.c_str(), path_.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw InputError("--out: cannot move the output into place at '" + path_ + "'");
-  }
+  writeFileAtomically(path_, text.str(), "--out");
 }
 
 }  // namespace rbsf::tools

@@ -5,7 +5,8 @@
 // Exit status: 0 exact plan written (optimised and accepted, or --no-optimize); 4 exact plan
 // written but the optimisation failed or was rejected (the planner's plan, marked); 3 time
 // limit without an exact plan (best distance printed, not optimised); 2 bad input (option,
-// value, cell, a start the fingers cannot hold, a goal no finger reaches); 1 internal error.
+// value, cell, a start the fingers cannot hold, a goal no finger reaches); 130 stopped by
+// SIGINT (best plan so far written); 1 internal error.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -13,9 +14,11 @@
 #include <cstdio>
 #include <iostream>
 
+#include "plan_outputs.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/tools/cli_values.h"
+#include "rbsf/tools/interrupt.h"
 #include "rbsf/tools/tool_main.h"
 #include "refine_plan.h"
 
@@ -27,9 +30,10 @@ constexpr int kExitNotOptimised = 4;
 
 struct Options {
   std::string cell, start, goal, start_theta = "0", planner = "KPIECE1", time_limit = "30",
-                                 seed = "1", out, csv, knots = "100", optimize_time_limit = "30",
+                                 seed = "1", out, csv, svg, report, svg_still = "0",
+                                 knots = "100", optimize_time_limit = "30",
                                  optimize_iterations = "500";
-  bool quiet = false, no_optimize = false;
+  bool quiet = false, no_optimize = false, reproducible = false;
 };
 
 /// One line on the optimisation and one per replay.
@@ -63,7 +67,9 @@ int run(int argc, char** argv) {
       "plan written but the optimisation failed or was rejected (reason on stderr); 3 time "
       "limit without an exact plan (best distance printed; not optimised); 2 bad input "
       "(option, value, file, a start the fingers cannot hold, a goal no finger reaches), "
-      "with one message on stderr; 1 internal error.");
+      "with one message on stderr; 130 stopped by SIGINT (Ctrl-C, during the search or the "
+      "optimisation: the best plan so far is written; a second Ctrl-C exits at once, writing "
+      "nothing); 1 internal error.");
   Options o;
   app.add_option("--cell", o.cell, "cell YAML file")->required();
   app.add_option("--start", o.start, "start pose x,y,phi (part at rest)")->required();
@@ -74,6 +80,12 @@ int run(int argc, char** argv) {
   app.add_option("--seed", o.seed, "random seed, positive integer (default 1)");
   app.add_option("--out", o.out, "write the plan as JSON");
   app.add_option("--csv", o.csv, "write the sampled trajectory as CSV");
+  app.add_option("--svg", o.svg, "write an animated SVG of the plan");
+  app.add_option("--report", o.report, "write an HTML page: animation and plots over time");
+  app.add_option("--svg-still", o.svg_still, "time [s] of the frame non-animating viewers show");
+  app.add_flag("--reproducible", o.reproducible,
+               "leave wall-clock fields (planning_time) out of the files: the same seed gives "
+               "byte-identical files");
   app.add_flag("--quiet", o.quiet, "no progress line");
   app.add_flag("--no-optimize", o.no_optimize, "write the planner's plan without optimising it");
   app.add_option("--knots", o.knots, "collocation intervals of the optimiser (default 100)");
@@ -82,6 +94,8 @@ int run(int argc, char** argv) {
   app.add_option("--optimize-iterations", o.optimize_iterations,
                  "optimiser iteration limit (default 500)");
   parseCommandLine(app, argc, argv);
+  const PlanOutputs outputs({o.out, o.csv, o.svg, o.report, o.reproducible,
+                             parseNumber(o.svg_still, "--svg-still"), o.cell});
 
   planner::PlannerSettings settings;
   settings.planner = o.planner;
@@ -119,12 +133,21 @@ int run(int argc, char** argv) {
     };
   }
   const RbsfModel model(loadCell(o.cell));
+  settings.cancel = &InterruptFlag::install();  // Ctrl-C: stop and write the best so far
+  opt_settings.cancel = settings.cancel;
   planner::ReorientationPlanner rp(model, settings);
   const trajopt::PlanOptimizer optimizer(model, opt_settings);  // bad settings: exit 2
   rp.checkProblem(problem);                                     // bad input before any search
   planner::Plan plan;
   const bool found = rp.solve(problem, plan);
   if (tty) std::fprintf(stderr, "\n");
+  if (InterruptFlag::raised()) {
+    if (found) outputs.write(model, plan);
+    std::printf("interrupted: best distance %.3g (tolerance units)%s; %llu propagations\n",
+                rp.bestDistance(), found && outputs.any() ? ", best plan so far written" : "",
+                static_cast<unsigned long long>(rp.propagations()));
+    return kExitInterrupted;
+  }
   if (found && plan.status == "exact") {
     std::printf(
         "exact plan: %zu segments, %.3f s of motion, phases %s; planned in %.3f s, %llu "
@@ -137,6 +160,12 @@ int run(int argc, char** argv) {
       replay.position_tolerance = settings.position_tolerance;
       replay.angle_tolerance = settings.angle_tolerance;
       RefineOutcome refined = refinePlan(optimizer, rp.simulator(), plan, replay);
+      if (InterruptFlag::raised()) {  // the optimiser stopped: the planner's plan, marked
+        outputs.write(model, refined.plan);
+        std::printf("interrupted during the optimisation: planner's plan%s\n",
+                    outputs.any() ? " written" : "");
+        return kExitInterrupted;
+      }
       printRefineSummary(refined);
       if (!refined.accepted) {
         std::fprintf(stderr, "plan-reorientation: planner's plan kept: %s\n",
@@ -145,19 +174,15 @@ int run(int argc, char** argv) {
       }
       plan = std::move(refined.plan);
     }
-    if (!o.out.empty()) planner::writePlanJson(plan, o.out);
-    if (!o.csv.empty()) planner::writePlanCsv(plan, o.csv);
+    outputs.write(model, plan);
     return status;
   }
-  if (found) {
-    if (!o.out.empty()) planner::writePlanJson(plan, o.out);
-    if (!o.csv.empty()) planner::writePlanCsv(plan, o.csv);
-  }
+  if (found) outputs.write(model, plan);
   std::printf(
       "no exact plan within %.3g s: best distance %.3g (tolerance units: 1 = 1 cm or "
       "2 deg)%s; %llu propagations\n",
       settings.time_limit, rp.bestDistance(),
-      found && !o.out.empty() ? ", approximate plan written" : "",
+      found && outputs.any() ? ", approximate plan written" : "",
       static_cast<unsigned long long>(rp.propagations()));
   return kExitTimeLimit;
 }

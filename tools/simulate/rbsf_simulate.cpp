@@ -17,19 +17,22 @@
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/simulator.h"
+#include "rbsf/tools/atomic_file.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/controls_file.h"
+#include "rbsf/tools/svg_animation.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/tools/trajectory_writer.h"
 
 namespace rbsf::tools {
 namespace {
 
-constexpr double kMaxTimeStep = 0.1;   // [s]: beyond this the contact model is meaningless
-constexpr int kMaxPhasesPrinted = 40;  // longer phase sequences are summarised
+constexpr double kMaxTimeStep = 0.1;    // [s]: beyond this the contact model is meaningless
+constexpr int kMaxPhasesPrinted = 40;   // longer phase sequences are summarised
+constexpr double kSvgFrameTime = 0.01;  // [s] between frames of --svg
 
 struct Options {
-  std::string cell, start, theta = "0", controls, dt = "0.001", out;
+  std::string cell, start, theta = "0", controls, dt = "0.001", out, svg;
 };
 
 /// Limits of the cell on tau, checked per segment (inputs beyond them are not a plan).
@@ -126,6 +129,7 @@ void printSummary(const Summary& s, const SimState& state, const RbsfModel& mode
   }
   if (!o.out.empty())
     std::printf("output               %s (%zu samples)\n", o.out.c_str(), samples);
+  if (!o.svg.empty()) std::printf("animation            %s\n", o.svg.c_str());
 }
 
 int run(int argc, char** argv) {
@@ -144,6 +148,7 @@ int run(int argc, char** argv) {
       ->required();
   app.add_option("--dt", o.dt, "time step [s] (default 0.001)");
   app.add_option("--out", o.out, "write the sampled trajectory (.csv or .json)");
+  app.add_option("--svg", o.svg, "write an animated SVG of the motion (a frame every 10 ms)");
   app.footer(kExitStatusHelp);
   parseCommandLine(app, argc, argv);
 
@@ -161,6 +166,9 @@ int run(int argc, char** argv) {
     throw InputError("--dt: must be in (0, " + std::to_string(kMaxTimeStep) + "] s, got " + o.dt);
   std::unique_ptr<TrajectoryWriter> writer;
   if (!o.out.empty()) writer = std::make_unique<TrajectoryWriter>(o.out, m);
+  if (!o.out.empty()) checkWritable(o.out, "--out");
+  if (!o.svg.empty()) checkWritable(o.svg, "--svg");
+  if (!o.svg.empty() && o.svg == o.out) throw InputError("--svg: '" + o.svg + "' is also --out");
   const ControlSchedule schedule = ControlSchedule::load(o.controls, m);
   checkLimits(model, schedule);
   const std::vector<long> steps = stepsPerSegment(schedule, h);
@@ -179,6 +187,8 @@ int run(int argc, char** argv) {
   StepReport report;
   Summary summary;
   TrajectorySample sample;
+  std::vector<TrajectorySample> frames;  // for --svg
+  const long frame_stride = std::max(1L, std::lround(kSvgFrameTime / h));
   long total = 0;
   for (std::size_t j = 0; j < steps.size(); ++j) {
     const VecU tau = schedule.segments()[j].tau;
@@ -188,19 +198,34 @@ int run(int argc, char** argv) {
         throw std::runtime_error("the simulation diverged at t = " + std::to_string(state.t) +
                                  " s");
       summary.add(report, state.t, m);
-      if (writer) {
-        sample.t = state.t;
-        sample.q = state.q;
-        sample.v = state.v;
-        sample.tau = tau;
-        sample.f_n.resize(m);
-        for (int i = 0; i < m; ++i) sample.f_n[i] = report.contacts[i].f_n;
-        sample.phase = report.phase;
-        writer->add(sample);
+      sample.t = state.t;
+      sample.q = state.q;
+      sample.v = state.v;
+      sample.tau = tau;
+      sample.f_n.resize(m);
+      for (int i = 0; i < m; ++i) sample.f_n[i] = report.contacts[i].f_n;
+      sample.phase = report.phase;
+      if (writer) writer->add(sample);
+      if (!o.svg.empty()) {
+        if (frames.empty()) {  // t = 0: the start at rest, with the first step's forces
+          frames.push_back(sample);
+          frames.back().t = 0.0, frames.back().q = q0, frames.back().v.setZero();
+        }
+        const bool last = j + 1 == steps.size() && k + 1 == steps[j];
+        if ((total + 1) % frame_stride == 0 || last) frames.push_back(sample);
       }
     }
   }
+  // Everything is formatted before any file is written; each file is written atomically.
+  std::string svg;
+  if (!o.svg.empty()) {
+    SvgAnimationOptions a;
+    a.title = "rbsf-simulate: " + o.cell;
+    a.subtitle = "controls " + o.controls + ", start " + o.start;
+    svg = SvgAnimation(model, std::move(frames), a).document();
+  }
   if (writer) writer->commit();
+  if (!o.svg.empty()) writeFileAtomically(o.svg, svg, "--svg");
   printSummary(summary, state, model, h, o, total, writer ? writer->size() : 0);
   return 0;
 }

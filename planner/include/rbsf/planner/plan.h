@@ -37,6 +37,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rbsf/dynamics/phase.h"
@@ -130,10 +131,24 @@ std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ&
 /// \brief "C", "P", "U"; throws InputError for anything else.
 Phase parsePhase(const std::string& text);
 
+/// \brief What plan files leave out.
+struct PlanFileOptions {
+  /// \brief Write wall-clock measurements (`planning_time`). Off, the same seed and
+  ///        settings give byte-identical files (plan-reorientation --reproducible);
+  ///        readPlanJson() then reads them as 0.
+  bool wall_clock = true;
+};
+
+/// \brief The JSON / CSV text of a plan. \throws std::runtime_error on a NaN.
+std::string planJsonText(const Plan& plan, const PlanFileOptions& options = {});
+std::string planCsvText(const Plan& plan);
 /// \brief Write JSON / CSV atomically. \throws std::runtime_error on a NaN or I/O failure.
-void writePlanJson(const Plan& plan, const std::string& path);
+void writePlanJson(const Plan& plan, const std::string& path, const PlanFileOptions& options = {});
 void writePlanCsv(const Plan& plan, const std::string& path);
 /// \brief Load a plan file. \throws InputError naming the file and key when malformed.
 Plan readPlanJson(const std::string& path);
+/// \brief Parse plan JSON text; `label` names the source in messages.
+/// \throws InputError naming the label and key when malformed.
+Plan parsePlanJson(std::string_view text, const std::string& label);
 
 }  // namespace rbsf::planner

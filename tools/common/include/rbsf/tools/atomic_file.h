@@ -1,0 +1,27 @@
+#pragma once
+/// \file
+/// \brief Output files that are complete or absent: text written to a temporary name in
+///        the target's directory, flushed, then renamed into place (rename(2) is atomic
+///        within one file system, so a reader sees the old file or the whole new one).
+
+#include <string>
+#include <string_view>
+
+namespace rbsf::tools {
+
+/// \brief The temporary name used for `path` by writeFileAtomically():
+///        "<path>.tmp.<pid>" (the pid keeps concurrent runs apart).
+std::string temporaryPathFor(const std::string& path);
+
+/// \brief Write `text` to `path` atomically (see the file comment). On any failure the
+///        temporary file is removed and `path` is left as it was.
+/// \throws InputError "<what>: cannot write '<path>'" when the file cannot be created,
+///         written or moved into place (a missing or read-only directory is bad input).
+void writeFileAtomically(const std::string& path, std::string_view text, const std::string& what);
+
+/// \brief Check before any work that `path` can be written: its directory exists and is
+///        writable, and `path` is not a directory.
+/// \throws InputError "<what>: cannot write '<path>': <reason>".
+void checkWritable(const std::string& path, const std::string& what);
+
+}  // namespace rbsf::tools

@@ -1,0 +1,34 @@
+#pragma once
+/// \file
+/// \brief SIGINT as a request to stop: the first Ctrl-C sets a flag that long searches
+///        (PlannerSettings::cancel, OptimizerSettings::cancel) poll, so the tool can write
+///        its best result so far; a second Ctrl-C ends the process at once with status
+///        kExitInterrupted, writing nothing more.
+///
+/// The handler is installed with sigaction and does only async-signal-safe work: a
+/// lock-free atomic store, and _exit() on the second signal.
+
+#include <atomic>
+
+namespace rbsf::tools {
+
+/// \brief Exit status of a run stopped by SIGINT: 128 + SIGINT, the shell's convention.
+inline constexpr int kExitInterrupted = 130;
+
+/// \brief Installs the SIGINT handler for the process lifetime (idempotent) and gives
+///        access to its flag. Not a class with state of its own: the handler can only
+///        reach a global, so this is a thin interface over it.
+class InterruptFlag {
+ public:
+  /// \brief Install the handler (once) and return the flag it sets.
+  /// \throws std::runtime_error if sigaction fails.
+  static const std::atomic<bool>& install();
+
+  /// \brief True once a SIGINT has arrived since install() (or the last reset()).
+  static bool raised();
+
+  /// \brief Clear the flag and the count (tests; a tool never needs this).
+  static void reset();
+};
+
+}  // namespace rbsf::tools

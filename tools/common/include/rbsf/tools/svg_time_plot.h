@@ -1,0 +1,48 @@
+#pragma once
+/// \file
+/// \brief A static SVG line plot of quantities over time, with the time windows of the
+///        motion's phases shaded behind the curves and a cursor that sweeps the time axis
+///        in step with the animation (SMIL, same period), for the HTML report.
+
+#include <string>
+#include <vector>
+
+#include "rbsf/dynamics/phase.h"
+
+namespace rbsf::tools {
+
+/// \brief One curve: a value per sample time.
+struct PlotSeries {
+  std::string name;   ///< legend text
+  std::string color;  ///< "#rrggbb"
+  std::vector<double> values;
+};
+
+/// \brief A plot of several series against the sample times.
+class SvgTimePlot {
+ public:
+  /// \brief `times` [s], non-decreasing; `phases` the phase of each sample (shaded).
+  /// \throws std::invalid_argument when the two differ in length or are empty.
+  SvgTimePlot(std::string title, std::string unit, std::vector<double> times,
+              std::vector<Phase> phases);
+
+  /// \throws std::invalid_argument when the series has the wrong length.
+  void add(PlotSeries series);
+
+  /// \brief The <svg> element, `width` x `height` pixels. Axes: time [s] and the values in
+  ///        `unit`, ticks at 1, 2 or 5 times a power of ten.
+  /// \throws std::runtime_error for a NaN or an infinite value.
+  std::string render(int width, int height) const;
+
+ private:
+  std::string title_, unit_;
+  std::vector<double> times_;
+  std::vector<Phase> phases_;
+  std::vector<PlotSeries> series_;
+};
+
+/// \brief Tick positions covering [lo, hi]: about `target` of them, spaced 1, 2 or 5 times a
+///        power of ten, first <= lo and last >= hi (the axis range is widened to them).
+std::vector<double> niceTicks(double lo, double hi, int target);
+
+}  // namespace rbsf::tools

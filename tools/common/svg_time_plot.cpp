@@ -1,0 +1,139 @@
+/// \file
+/// \brief Time plots for the HTML report (see svg_time_plot.h).
+
+#include "rbsf/tools/svg_time_plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "rbsf/tools/svg_format.h"
+
+namespace rbsf::tools {
+
+std::vector<double> niceTicks(double lo, double hi, int target) {
+  if (!(hi > lo)) {  // a constant: a unit-wide band around it
+    const double pad = std::max(1.0, std::abs(lo)) * 0.5;
+    lo -= pad, hi += pad;
+  }
+  if (!std::isfinite(hi - lo)) return {lo, hi};
+  const double raw = (hi - lo) / std::max(1, target);
+  const double p = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = 10 * p;
+  for (const double f : {1.0, 2.0, 5.0}) {
+    if (f * p >= raw) {
+      step = f * p;
+      break;
+    }
+  }
+  std::vector<double> ticks;
+  const double first = std::floor(lo / step + 1e-9), last = std::ceil(hi / step - 1e-9);
+  // In doubles: a range far from zero would overflow an integer index. Far beyond the
+  // resolution of a double (or beyond 100 ticks) the ends alone are the ticks.
+  if (!(last - first <= 100.0) || first + 1.0 == first) return {lo, hi};
+  for (double k = first; k <= last; k += 1.0) ticks.push_back(k * step);
+  return ticks;
+}
+
+SvgTimePlot::SvgTimePlot(std::string title, std::string unit, std::vector<double> times,
+                         std::vector<Phase> phases)
+    : title_(std::move(title)),
+      unit_(std::move(unit)),
+      times_(std::move(times)),
+      phases_(std::move(phases)) {
+  if (times_.empty() || times_.size() != phases_.size())
+    throw std::invalid_argument("SvgTimePlot: times and phases must be non-empty and match");
+}
+
+void SvgTimePlot::add(PlotSeries series) {
+  if (series.values.size() != times_.size())
+    throw std::invalid_argument("SvgTimePlot: series '" + series.name + "' has " +
+                                std::to_string(series.values.size()) + " values for " +
+                                std::to_string(times_.size()) + " times");
+  series_.push_back(std::move(series));
+}
+
+std::string SvgTimePlot::render(int width, int height) const {
+  const double left = 64, right = width - 12.0, top = 26, bottom = height - 34.0;
+  const double t0 = times_.front(), t1 = std::max(times_.back(), t0 + 1e-9);
+  double lo = INFINITY, hi = -INFINITY;
+  for (const PlotSeries& s : series_)
+    for (const double v : s.values) {
+      if (!std::isfinite(v)) throw std::runtime_error("plot '" + title_ + "' holds a NaN");
+      lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+  if (series_.empty()) lo = 0, hi = 1;
+  const std::vector<double> yt = niceTicks(lo, hi, 5);
+  lo = yt.front(), hi = yt.back();
+  auto X = [&](double t) { return left + (t - t0) / (t1 - t0) * (right - left); };
+  auto Y = [&](double v) { return bottom - (v - lo) / (hi - lo) * (bottom - top); };
+  auto f1 = [](double x) { return fixedNumber(x, 1); };
+
+  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " +
+                  std::to_string(width) + " " + std::to_string(height) + "\" width=\"" +
+                  std::to_string(width) + "\" height=\"" + std::to_string(height) +
+                  "\" font-family=\"sans-serif\" font-size=\"11\">";
+  // Phase windows: sample k's phase holds from t_k to t_(k+1).
+  for (std::size_t a = 0; a < times_.size();) {
+    std::size_t b = a;
+    while (b + 1 < times_.size() && phases_[b + 1] == phases_[a]) ++b;
+    const double end = b + 1 < times_.size() ? times_[b + 1] : t1;
+    s += "<rect x=\"" + f1(X(times_[a])) + "\" y=\"" + f1(top) + "\" width=\"" +
+         f1(std::max(0.0, X(end) - X(times_[a]))) + "\" height=\"" + f1(bottom - top) +
+         "\" fill=\"" + phaseColor(phases_[a]) + "\"><title>" +
+         escapeXml(phaseDescription(phases_[a])) + "</title></rect>";
+    a = b + 1;
+  }
+  for (const double v : yt) {
+    s += "<line x1=\"" + f1(left) + "\" x2=\"" + f1(right) + "\" y1=\"" + f1(Y(v)) + "\" y2=\"" +
+         f1(Y(v)) + "\" stroke=\"#aab7b8\" stroke-width=\"0.5\"/>";
+    char label[32];
+    std::snprintf(label, sizeof label, "%g", std::abs(v) < 1e-12 ? 0.0 : v);
+    s += "<text x=\"" + f1(left - 5) + "\" y=\"" + f1(Y(v) + 4) + "\" text-anchor=\"end\">" +
+         label + "</text>";
+  }
+  for (const double t : niceTicks(t0, t1, 8)) {
+    if (t < t0 - 1e-9 || t > t1 + 1e-9) continue;
+    char label[32];
+    std::snprintf(label, sizeof label, "%g", t);
+    s += "<line x1=\"" + f1(X(t)) + "\" x2=\"" + f1(X(t)) + "\" y1=\"" + f1(bottom) + "\" y2=\"" +
+         f1(bottom + 4) + "\" stroke=\"#17202a\"/><text x=\"" + f1(X(t)) + "\" y=\"" +
+         f1(bottom + 16) + "\" text-anchor=\"middle\">" + label + "</text>";
+  }
+  s += "<rect x=\"" + f1(left) + "\" y=\"" + f1(top) + "\" width=\"" + f1(right - left) +
+       "\" height=\"" + f1(bottom - top) + "\" fill=\"none\" stroke=\"#17202a\"/>";
+  s += "<text x=\"" + f1(left) + "\" y=\"16\" font-size=\"13\" font-weight=\"bold\">" +
+       escapeXml(title_) + " [" + escapeXml(unit_) + "]</text>";
+  s += "<text x=\"" + f1(right) + "\" y=\"" + f1(height - 4.0) +
+       "\" text-anchor=\"end\">t [s]</text>";
+  double legend_x = right;
+  for (auto it = series_.rbegin(); it != series_.rend(); ++it) {
+    const double w = 28 + 7.0 * static_cast<double>(it->name.size());
+    legend_x -= w;
+    s += "<line x1=\"" + f1(legend_x) + "\" x2=\"" + f1(legend_x + 18) + "\" y1=\"12\" y2=\"12\" " +
+         "stroke=\"" + it->color + "\" stroke-width=\"2.5\"/><text x=\"" + f1(legend_x + 22) +
+         "\" y=\"16\">" + escapeXml(it->name) + "</text>";
+  }
+  for (const PlotSeries& ser : series_) {
+    std::string pts;
+    for (std::size_t k = 0; k < times_.size(); ++k) {
+      if (k) pts += ' ';
+      pts += f1(X(times_[k])) + "," + f1(Y(ser.values[k]));
+    }
+    s += "<polyline points=\"" + pts + "\" fill=\"none\" stroke=\"" + ser.color +
+         "\" stroke-width=\"1.8\"><title>" + escapeXml(ser.name) + "</title></polyline>";
+  }
+  // A cursor in step with the animation (one play = the sample time span).
+  s += "<line x1=\"" + f1(left) + "\" x2=\"" + f1(left) + "\" y1=\"" + f1(top) + "\" y2=\"" +
+       f1(bottom) + "\" stroke=\"#17202a\" stroke-width=\"1\" stroke-dasharray=\"3 3\">";
+  if (times_.back() > t0) {
+    const std::string dur = fixedNumber(times_.back() - t0, 6);
+    for (const char* attr : {"x1", "x2"})
+      s += std::string("<animate attributeName=\"") + attr + "\" dur=\"" + dur +
+           "s\" repeatCount=\"indefinite\" keyTimes=\"0;1\" values=\"" + f1(left) + ";" +
+           f1(right) + "\"/>";
+  }
+  return s + "</line></svg>";
+}
+
+}  // namespace rbsf::tools

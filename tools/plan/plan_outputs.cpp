@@ -1,0 +1,117 @@
+/// \file
+/// \brief plan-reorientation's output files (see plan_outputs.h).
+
+#include "plan_outputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/tools/atomic_file.h"
+#include "rbsf/tools/html_report.h"
+#include "rbsf/tools/svg_animation.h"
+
+namespace rbsf::tools {
+namespace {
+
+std::string format(const char* fmt, double a, double b = 0, double c = 0) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, fmt, a, b, c);
+  return buf;
+}
+
+std::string poseText(const Pose& p) {
+  return format("(%.3f m, %.3f m, %.1f deg)", p.x, p.y, p.phi * 180.0 / M_PI);
+}
+
+}  // namespace
+
+PlanOutputs::PlanOutputs(PlanOutputOptions options) : o_(std::move(options)) {
+  const std::pair<const std::string*, const char*> outs[] = {
+      {&o_.json, "--out"}, {&o_.csv, "--csv"}, {&o_.svg, "--svg"}, {&o_.report, "--report"}};
+  for (std::size_t a = 0; a < 4; ++a) {
+    if (outs[a].first->empty()) continue;
+    checkWritable(*outs[a].first, outs[a].second);
+    for (std::size_t b = 0; b < a; ++b)
+      if (*outs[a].first == *outs[b].first)
+        throw InputError(std::string(outs[a].second) + ": '" + *outs[a].first +
+                         "' is also given to " + outs[b].second);
+  }
+  if (!std::isfinite(o_.svg_still) || o_.svg_still < 0.0)
+    throw InputError("--svg-still: must be a time >= 0 s");
+}
+
+bool PlanOutputs::any() const {
+  return !o_.json.empty() || !o_.csv.empty() || !o_.svg.empty() || !o_.report.empty();
+}
+
+std::vector<TrajectorySample> PlanOutputs::frames(const RbsfModel& model,
+                                                  const planner::Plan& plan) {
+  // Filled in place: element-wise copies keep GCC 12's -Wstringop-overflow false positive
+  // on moved fixed-capacity Eigen vectors away.
+  const int m = model.numFingers();
+  std::vector<TrajectorySample> frames(std::max<std::size_t>(plan.samples.size(), 1));
+  for (std::size_t k = 0; k < plan.samples.size(); ++k) {
+    const planner::PlanSample& s = plan.samples[k];
+    TrajectorySample& f = frames[k];
+    f.t = s.t, f.q = s.q, f.v = s.v, f.tau = s.tau, f.f_n = s.f_n, f.phase = s.phase;
+  }
+  if (plan.samples.empty()) {  // no motion: the part at rest at the start
+    TrajectorySample& f = frames[0];
+    f.q = plan.q0;
+    f.v = VecQ::Zero(layout::configDim(m));
+    f.tau = VecU::Zero(layout::controlDim(m));
+    f.f_n = VecC::Zero(m);
+    f.phase = Phase::kC;
+  }
+  return frames;
+}
+
+void PlanOutputs::write(const RbsfModel& model, const planner::Plan& plan) const {
+  planner::PlanFileOptions file;
+  file.wall_clock = !o_.reproducible;
+  std::vector<std::pair<std::string, std::string>> texts;  // path, text: all formatted first
+  if (!o_.json.empty()) texts.emplace_back(o_.json, planner::planJsonText(plan, file));
+  if (!o_.csv.empty()) texts.emplace_back(o_.csv, planner::planCsvText(plan));
+  if (!o_.svg.empty() || !o_.report.empty()) {
+    SvgAnimationOptions a;
+    a.title = "plan-reorientation: " + o_.cell_label;
+    a.subtitle = plan.status + " plan from " + poseText(plan.start) + " to " + poseText(plan.goal) +
+                 " (dashed)";
+    a.goal = plan.goal;
+    a.still_time = o_.svg_still;
+    if (!o_.svg.empty())
+      texts.emplace_back(o_.svg, SvgAnimation(model, frames(model, plan), a).document());
+    if (!o_.report.empty()) {
+      std::vector<std::pair<std::string, std::string>> rows = {
+          {"cell", o_.cell_label},
+          {"status", plan.status},
+          {"start",
+           poseText(plan.start) + format(", base %.1f deg", plan.start_theta * 180 / M_PI)},
+          {"goal", poseText(plan.goal)},
+          {"goal distance",
+           format("%.3g (tolerance units: 1 = 1 cm or 2 deg)", plan.goal_distance)},
+          {"motion", format("%.3f s in %.0f segments", plan.duration(),
+                            static_cast<double>(plan.segments.size()))},
+          {"phase sequence", plan.phaseSequence()},
+          {"search", plan.planner + format(", seed %.0f, %.0f propagations", plan.seed,
+                                           static_cast<double>(plan.propagations))}};
+      if (file.wall_clock) rows.emplace_back("planning time", format("%.3f s", plan.planning_time));
+      texts.emplace_back(o_.report,
+                         HtmlReport(model, frames(model, plan), a, std::move(rows)).render());
+    }
+  }
+  const char* what[] = {"--out", "--csv", "--svg", "--report"};
+  for (const auto& [path, text] : texts) {
+    const char* w = path == o_.json  ? what[0]
+                    : path == o_.csv ? what[1]
+                    : path == o_.svg ? what[2]
+                                     : what[3];
+    writeFileAtomically(path, text, w);
+  }
+}
+
+}  // namespace rbsf::tools
