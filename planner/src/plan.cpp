@@ -278,9 +278,8 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
     }
     if (!ok)
       throw InputError(path + ": " + where + (where.empty() ? "" : ".") + key +
-                       " must be an integer in [" +
-                       std::to_string(static_cast<std::uint64_t>(lo)) + ", " +
-                       std::to_string(static_cast<std::uint64_t>(hi)) + "]");
+                       " must be an integer in [" + std::to_string(static_cast<std::uint64_t>(lo)) +
+                       ", " + std::to_string(static_cast<std::uint64_t>(hi)) + "]");
     return v.get<std::uint64_t>();
   };
   auto pose = [&](const char* key) {

@@ -30,9 +30,8 @@ constexpr int kExitNotOptimised = 4;
 
 struct Options {
   std::string cell, start, goal, start_theta = "0", planner = "KPIECE1", time_limit = "30",
-                                 seed = "1", out, csv, svg, report, svg_still = "0",
-                                 knots = "100", optimize_time_limit = "30",
-                                 optimize_iterations = "500";
+                                 seed = "1", out, csv, svg, report, svg_still = "0", knots = "100",
+                                 optimize_time_limit = "30", optimize_iterations = "500";
   bool quiet = false, no_optimize = false, reproducible = false;
 };
 
