@@ -209,7 +209,9 @@ void mergeLog(ExperimentLog& into, const ExperimentLog& from) {
       throw InputError("cannot merge experiment '" + from.name() + "' into '" + into.name() + "'");
     const double total = headerNumber(into.header, " seconds spent to collect the data") +
                          headerNumber(from.header, " seconds spent to collect the data");
-    setHeaderValue(into.header, " seconds spent to collect the data", std::to_string(total));
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", total);
+    setHeaderValue(into.header, " seconds spent to collect the data", buf);
     if (into.enums.empty()) into.enums = from.enums;
     for (const PlannerLog& p : from.planners) {
       auto it = std::find_if(into.planners.begin(), into.planners.end(),

@@ -38,22 +38,23 @@ bool goodName(const std::string& s) {
 BenchProblem readProblem(const YAML::Node& n, const std::string& where,
                          const std::filesystem::path& folder) {
   if (!n.IsMap()) throw InputError(where + ": expected a mapping");
-  static const std::set<std::string> keys = {"name", "cell",       "start",     "start_theta",
-                                             "goal", "goal_angle", "tolerances"};
-  std::set<std::string> seen;
-  for (const auto& kv : n) {
-    const std::string k = kv.first.Scalar();
-    if (!keys.count(k)) throw InputError(where + ": unknown key '" + k + "'");
-    if (!seen.insert(k).second) throw InputError(where + ": duplicate key '" + k + "'");
-  }
-  for (const char* k : {"name", "cell", "start", "goal"})
-    if (!n[k]) throw InputError(where + ": missing key '" + k + "'");
+  if (!n["name"]) throw InputError(where + ": missing key 'name'");
   BenchProblem p;
   p.name = scalar(n["name"], where + ": name");
   if (!goodName(p.name))
     throw InputError(where + ": name '" + p.name +
                      "' must be letters, digits, '-', '_' or '.' (it names the log file)");
   const std::string at = where + " (" + p.name + ")";
+  static const std::set<std::string> keys = {"name", "cell",       "start",     "start_theta",
+                                             "goal", "goal_angle", "tolerances"};
+  std::set<std::string> seen;
+  for (const auto& kv : n) {
+    const std::string k = kv.first.Scalar();
+    if (!keys.count(k)) throw InputError(at + ": unknown key '" + k + "'");
+    if (!seen.insert(k).second) throw InputError(at + ": duplicate key '" + k + "'");
+  }
+  for (const char* k : {"cell", "start", "goal"})
+    if (!n[k]) throw InputError(at + ": missing key '" + k + "'");
   const std::string cell = scalar(n["cell"], at + ": cell");
   p.cell_path =
       (std::filesystem::path(cell).is_absolute() ? std::filesystem::path(cell) : folder / cell)
