@@ -1,7 +1,7 @@
 // One step of the hybrid simulator with every contact touching: the part held at rest on
 // m = 3 and m = 6 fingers (phase C, every contact sticking, the indeterminate case of
 // paper 2.2), and the part sliding frictionlessly on m = 3 fingers (phase U).
-// Run: build/bench/rbsf_simulator_bench --benchmark_repetitions=10
+// Part of build/bench/rbsf_micro_bench (micro_bench_main.cpp).
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -92,5 +92,3 @@ BENCHMARK(BM_SimulatorStepSliding)->Arg(3);
 
 }  // namespace
 }  // namespace rbsf
-
-BENCHMARK_MAIN();
