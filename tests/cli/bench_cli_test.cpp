@@ -84,6 +84,12 @@ TEST(RbsfBench, DefaultSuiteEndToEndWithPlannerArenaDatabase) {
   EXPECT_EQ(sql(db, "SELECT COUNT(*) FROM experiments;"), "3\n");
   EXPECT_EQ(sql(db, "SELECT COUNT(DISTINCT seed) FROM runs;"), "12\n");
   EXPECT_EQ(sql(db, "SELECT COUNT(*) FROM runs WHERE propagations > 0 AND time > 0;"), "12\n");
+  // Solved runs: OMPL's path check passes, its length (sum of control durations) equals
+  // the re-simulated plan's duration, and the re-simulation reproduces the planner's states.
+  EXPECT_EQ(sql(db,
+                "SELECT COUNT(*) FROM runs WHERE solved = 1 AND (correct_solution != 1 OR "
+                "abs(solution_length - solution_duration) > 1e-9 OR path_mismatch > 1e-9);"),
+            "0\n");
   // A summary row per problem and planner.
   for (const char* problem : {"30deg", "90deg", "180deg"})
     for (const char* planner : {"KPIECE1", "RRT"}) {
