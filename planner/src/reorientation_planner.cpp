@@ -18,6 +18,7 @@
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/planner/goal.h"
 #include "rbsf/planner/projection.h"
+#include "rbsf/planner/stop_at_goal_planner.h"
 
 namespace rbsf::planner {
 
@@ -151,7 +152,8 @@ PlannerSetup ReorientationPlanner::setup(const Problem& problem) const {
   out.goal = std::make_shared<PoseGoal>(si, problem.goal, s.position_tolerance, s.angle_tolerance,
                                         *out.checker, problem.absolute_angle);
   out.simple_setup->setGoal(out.goal);
-  out.simple_setup->setPlanner(makeControlPlanner(s.planner, si, s.goal_bias));
+  out.simple_setup->setPlanner(std::make_shared<StopAtGoalPlanner>(
+      makeControlPlanner(s.planner, si, s.goal_bias), out.goal));
   return out;
 }
 
@@ -174,7 +176,7 @@ bool ReorientationPlanner::solve(const Problem& problem, Plan& plan) {
       s.progress({t, propagator.propagations(), goal.bestDistance()});
     }
     const bool cancelled = s.cancel != nullptr && s.cancel->load(std::memory_order_relaxed);
-    return cancelled || t >= s.time_limit || goal.bestDistance() <= 1.0;
+    return cancelled || t >= s.time_limit;  // the goal stops it too (StopAtGoalPlanner)
   });
   setup.simple_setup->getPlanner()->solve(ptc);
   const double planning_time = elapsed();

@@ -40,7 +40,7 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 struct Options {
-  std::string problems, planners = "KPIECE1,RRT,SST,EST,PDST", runs = "10", time_limit = "30",
+  std::string problems, planners = "KPIECE1,RRT,SST,PDST", runs = "10", time_limit = "30",
                         jobs = "1", shard, out = "rbsf-bench-out";
   bool optimize = false, list = false;
   std::string merge_out;
@@ -120,8 +120,11 @@ std::string describe(const LogRun& r, double time_limit) {
                   get("propagations INTEGER").c_str(),
                   std::atof(get("solution duration REAL").c_str()));
   else
-    std::snprintf(buf, sizeof buf, "not solved in %.3g s (best distance %.3g), %s propagations",
-                  time_limit, std::atof(get("best goal distance REAL").c_str()),
+    std::snprintf(buf, sizeof buf, "not solved in %.3g s (best distance %s), %s propagations",
+                  time_limit,
+                  get("best goal distance REAL").empty()
+                      ? "-"
+                      : get("best goal distance REAL").substr(0, 6).c_str(),
                   get("propagations INTEGER").c_str());
   std::string out = buf;
   if (!get("optimizer success BOOLEAN").empty())
@@ -317,8 +320,9 @@ int run(int argc, char** argv) {
   Options o;
   app.add_option("--problems", o.problems,
                  "problem suite (YAML), e.g. cells/problems/default.yaml");
-  app.add_option("--planners", o.planners,
-                 "comma-separated planners (default KPIECE1,RRT,SST,EST,PDST)");
+  app.add_option(
+      "--planners", o.planners,
+      "comma-separated planners: KPIECE1, RRT, SST, EST, PDST (default KPIECE1,RRT,SST,PDST)");
   app.add_option("--runs", o.runs, "runs per problem and planner (default 10)");
   app.add_option("--time-limit", o.time_limit, "seconds per run (default 30)");
   app.add_option("--jobs", o.jobs, "runs in parallel (default 1)");

@@ -11,7 +11,9 @@
 ///   - propagator SimPropagator (steps_per_control simulator steps per propagation step,
 ///     min..max_control_steps per control), validity SupportValidityChecker;
 ///   - start: the checked start configuration at rest; goal PoseGoal;
-///   - the planner by name (plannerNames()), set on the SimpleSetup.
+///   - the planner by name (plannerNames()) inside a StopAtGoalPlanner (the search ends
+///     at the first exact solution, whoever's termination condition runs it), set on the
+///     SimpleSetup.
 /// The setup refers to the ReorientationPlanner's model and simulator: the planner must
 /// outlive it. It does not seed OMPL's random numbers (ompl::RNG::setSeed is global and
 /// must come before the first RNG is created: the caller does it).
