@@ -212,7 +212,12 @@ void mergeLog(ExperimentLog& into, const ExperimentLog& from) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", total);
     setHeaderValue(into.header, " seconds spent to collect the data", buf);
-    if (into.enums.empty()) into.enums = from.enums;
+    for (const std::string& e : from.enums) {  // union of the enums, by name
+      const std::string name = e.substr(0, e.find('|'));
+      if (std::none_of(into.enums.begin(), into.enums.end(),
+                       [&](const std::string& f) { return f.substr(0, f.find('|')) == name; }))
+        into.enums.push_back(e);
+    }
     for (const PlannerLog& p : from.planners) {
       auto it = std::find_if(into.planners.begin(), into.planners.end(),
                              [&](const PlannerLog& q) { return q.name == p.name; });

@@ -106,7 +106,21 @@ ExperimentLog emptyExperiment(const std::string& name, double time_limit) {
   return log;
 }
 
-std::string describe(const LogRun& r, double time_limit) {
+/// Name of value `index` of enum `name` in a log's enum lines ("name|v0|v1|...").
+std::string enumName(const std::vector<std::string>& enums, const std::string& name,
+                     const std::string& index) {
+  for (const std::string& e : enums) {
+    if (e.rfind(name + "|", 0) != 0) continue;
+    std::vector<std::string> values;
+    std::istringstream in(e.substr(name.size() + 1));
+    for (std::string v; std::getline(in, v, '|');) values.push_back(v);
+    const int k = std::atoi(index.c_str());
+    if (!index.empty() && k >= 0 && k < static_cast<int>(values.size())) return values[k];
+  }
+  return index;
+}
+
+std::string describe(const LogRun& r, double time_limit, const std::vector<std::string>& enums) {
   auto get = [&](const char* k) {
     const auto it = r.values.find(k);
     return it == r.values.end() ? std::string() : it->second;
@@ -128,9 +142,10 @@ std::string describe(const LogRun& r, double time_limit) {
                   get("propagations INTEGER").c_str());
   std::string out = buf;
   if (!get("optimizer success BOOLEAN").empty())
-    out += get("optimizer success BOOLEAN") == "1"
-               ? "; optimised, cost -" + get("cost reduction REAL").substr(0, 5)
-               : "; optimiser failed";
+    out +=
+        get("optimizer success BOOLEAN") == "1"
+            ? "; optimised, cost -" + get("cost reduction REAL").substr(0, 5)
+            : "; optimiser: " + enumName(enums, "optimizer status", get("optimizer status ENUM"));
   return out;
 }
 
@@ -262,7 +277,7 @@ int runBenchmarks(const Options& o) {
     const LogRun& run = one.planners.front().runs.front();
     std::fprintf(stderr, "[%zu/%zu] %s %s run %d (seed %u): %s\n", finished, mine.size(),
                  names[c.spec.problem].c_str(), c.spec.planner.c_str(), c.spec.run, c.spec.seed,
-                 describe(run, rs.time_limit).c_str());
+                 describe(run, rs.time_limit, one.enums).c_str());
   }
   std::error_code ec;
   fs::remove_all(scratch, ec);

@@ -1,7 +1,10 @@
 #include "rbsf/bench/single_run.h"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <ompl/control/PathControl.h>
 #include <ompl/tools/benchmark/Benchmark.h>
@@ -9,6 +12,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "rbsf/bench/benchmark_log.h"
+#include "rbsf/trajopt/plan_optimizer.h"
 
 namespace rbsf::bench {
 
@@ -21,6 +25,40 @@ std::string num(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
+}
+
+/// Values of the "optimizer status" enum: Ipopt's return statuses as PlanOptimizer names
+/// them, its wall-time stop, and "Not_Solved" (no NLP built).
+const std::vector<std::string>& optimizerStatuses() {
+  static const std::vector<std::string> names = {"Solve_Succeeded",
+                                                 "Solved_To_Acceptable_Level",
+                                                 "Infeasible_Problem_Detected",
+                                                 "Search_Direction_Becomes_Too_Small",
+                                                 "Diverging_Iterates",
+                                                 "User_Requested_Stop",
+                                                 "Feasible_Point_Found",
+                                                 "Maximum_Iterations_Exceeded",
+                                                 "Restoration_Failed",
+                                                 "Error_In_Step_Computation",
+                                                 "Maximum_CpuTime_Exceeded",
+                                                 "Maximum_WallTime_Exceeded",
+                                                 "Not_Enough_Degrees_Of_Freedom",
+                                                 "Invalid_Problem_Definition",
+                                                 "Invalid_Option",
+                                                 "Invalid_Number_Detected",
+                                                 "Unrecoverable_Exception",
+                                                 "NonIpopt_Exception_Thrown",
+                                                 "Insufficient_Memory",
+                                                 "Internal_Error",
+                                                 "Not_Solved",
+                                                 "Unknown_Status"};
+  return names;
+}
+
+std::string optimizerStatusIndex(const std::string& status) {
+  const auto& names = optimizerStatuses();
+  const auto it = std::find(names.begin(), names.end(), status);
+  return std::to_string(it == names.end() ? names.size() - 1 : it - names.begin());
 }
 
 /// Propagations OMPL's PathControl::check() makes on a correct path: each control
@@ -74,6 +112,20 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
     if (!rp.makePlan(bp.problem, setup, time, plan)) return;
     run["solution duration REAL"] = num(plan.duration());
     run["path mismatch REAL"] = num(plan.path_mismatch);
+    if (!rs.optimize) return;
+    // The optimiser after the run: OMPL's time is the planner's alone.
+    const trajopt::PlanOptimizer optimizer(model);
+    const trajopt::OptimizedPlan opt = optimizer.optimize(plan);
+    const planner::OptimizationSummary& o = opt.plan.optimization;
+    run["optimizer success BOOLEAN"] = opt.success ? "1" : "0";
+    run["optimizer status ENUM"] = optimizerStatusIndex(o.status);
+    run["optimizer iterations INTEGER"] = std::to_string(o.iterations);
+    run["optimizer time REAL"] = num(o.solve_time);
+    if (std::isfinite(o.cost_before)) run["cost before REAL"] = num(o.cost_before);
+    if (opt.success && std::isfinite(o.cost_after)) {
+      run["cost after REAL"] = num(o.cost_after);
+      if (o.cost_before > 0.0) run["cost reduction REAL"] = num(1.0 - o.cost_after / o.cost_before);
+    }
   });
   // One run, no console output, no path simplification (geometric only).
   const ompl::tools::Benchmark::Request request(rs.time_limit, 4096.0, 1, 0.05, false, false,
@@ -82,7 +134,13 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
   std::ostringstream text;
   if (!benchmark.saveResultsToStream(text))
     throw std::runtime_error("OMPL's benchmark recorded no run");
-  writeFileAtomically(log_path, text.str());
+  ExperimentLog log = parseLog(text.str(), "OMPL's benchmark log");
+  if (rs.optimize) {
+    std::string e = "optimizer status";
+    for (const std::string& name : optimizerStatuses()) e += "|" + name;
+    log.enums.push_back(e);
+  }
+  writeFileAtomically(log_path, formatLog(log));
 }
 
 }  // namespace rbsf::bench

@@ -20,7 +20,7 @@
 /// Planner Arena), and `rbsf-bench merge` merges shards the same way. Merging keeps the
 /// first log's header (with the run count and the total time updated and seed 0: each
 /// run's own seed is its "seed" property) and joins every planner's runs, ordered by the
-/// "run index" property; property columns are the union, a missing value left empty
+/// "run index" property; enums and property columns are the union, a missing value left empty
 /// (NULL in the database), as OMPL does.
 
 #include <map>

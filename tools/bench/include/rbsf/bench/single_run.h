@@ -19,9 +19,9 @@
 /// distance REAL` | least goal distance reached (tolerance units, <= 1: goal) | | `solution
 /// duration REAL` | exact solutions: seconds of motion of the plan | | `path mismatch REAL` | exact
 /// solutions: re-simulated plan vs the planner's states | | `optimizer success BOOLEAN`, `optimizer
-/// iterations INTEGER`, `optimizer time REAL`, `cost before REAL`, `cost after REAL`, `cost
-/// reduction REAL` | with --optimize, exact solutions: PlanOptimizer's solve; cost reduction = 1 -
-/// after / before |
+/// status ENUM` (Ipopt's status, enum "optimizer status" in the log), `optimizer iterations
+/// INTEGER`, `optimizer time REAL`, `cost before REAL`, `cost after REAL`, `cost reduction REAL` |
+/// with --optimize, exact solutions: PlanOptimizer's solve; cost reduction = 1 - after / before |
 
 #include <string>
 
