@@ -26,7 +26,7 @@ def main():
     if not experiments:
         sys.stderr.write("plot-success.py: no experiments in %s\n" % sys.argv[1])
         return 2
-    fig, axes = plt.subplots(1, len(experiments), figsize=(4.2 * len(experiments), 3.6),
+    fig, axes = plt.subplots(1, len(experiments), figsize=(4.2 * len(experiments), 3.9),
                              sharey=True, squeeze=False)
     for ax, (eid, ename, limit) in zip(axes[0], experiments):
         for pid, pname in planners:
@@ -49,8 +49,9 @@ def main():
         ax.set_ylim(0, 100)
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel("success rate [%]")
-    axes[0][-1].legend(loc="lower right", fontsize=8)
-    fig.tight_layout()
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=max(1, len(labels)), fontsize=9)
+    fig.tight_layout(rect=(0, 0.08, 1, 1), w_pad=2.0)
     fig.savefig(sys.argv[2])
     return 0
 
