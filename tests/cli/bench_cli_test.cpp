@@ -69,7 +69,7 @@ std::string sql(const std::string& db, const std::string& query) {
 TEST(RbsfBench, DefaultSuiteEndToEndWithPlannerArenaDatabase) {
   const std::string out = scratch("e2e");
   const Result r = run("--problems " + kSuite +
-                       " --planners KPIECE1,RRT --runs 2 --time-limit 1.5 --jobs 2 --out " + out);
+                       " --planners KPIECE1,RRT --runs 2 --time-limit 3 --jobs 2 --out " + out);
   ASSERT_EQ(r.status, 0) << r.err;
   // One progress line per run.
   int progress = 0;

@@ -142,8 +142,7 @@ ExperimentLog parseLog(const std::string& text, const std::string& label) {
         in.fail("a run has " + std::to_string(v.size()) + " values for " +
                 std::to_string(names.size()) + " properties");
       LogRun run;
-      for (std::size_t k = 0; k < names.size(); ++k)
-        if (!v[k].empty()) run.values[names[k]] = v[k];
+      for (std::size_t k = 0; k < names.size(); ++k) run.values[names[k]] = v[k];
       p.runs.push_back(std::move(run));
     }
     if (in.peek() != ".") {

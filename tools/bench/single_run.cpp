@@ -89,6 +89,15 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
   ompl::tools::Benchmark benchmark(ss, bp.name);
   benchmark.addPlanner(ss.getPlanner());
   benchmark.setPostRunEvent([&](const ob::PlannerPtr&, ompl::tools::Benchmark::RunProperties& run) {
+    // rbsf's columns exist in every run (empty: NULL), also when no run solved.
+    for (const char* key :
+         {"best goal distance REAL", "solution duration REAL", "path mismatch REAL"})
+      run[key] = "";
+    if (rs.optimize)
+      for (const char* key :
+           {"optimizer success BOOLEAN", "optimizer status ENUM", "optimizer iterations INTEGER",
+            "optimizer time REAL", "cost before REAL", "cost after REAL", "cost reduction REAL"})
+        run[key] = "";
     run["run index INTEGER"] = std::to_string(spec.run);
     run["seed INTEGER"] = std::to_string(spec.seed);
     const ob::ProblemDefinitionPtr& pdef = ss.getProblemDefinition();

@@ -29,7 +29,8 @@
 
 namespace rbsf::bench {
 
-/// \brief One run: property name with type ("time REAL") -> value text.
+/// \brief One run: property name with type ("time REAL") -> value text ("" when the run
+///        has no value: NULL in the database).
 struct LogRun {
   std::map<std::string, std::string> values;
   std::string progress;  ///< the run's progress line (empty when none)
