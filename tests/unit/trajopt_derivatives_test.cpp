@@ -47,10 +47,6 @@ MatrixXd denseJacobian(const ConstraintSet& set, const VectorXd& z) {
   return J;
 }
 
-double relativeError(const MatrixXd& a, const MatrixXd& b) {
-  return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff());
-}
-
 TEST(TrajoptDerivatives, ConstraintJacobiansMatchCentralDifferences) {
   const TrajectoryProblem p(test::defaultModel(), test::shortPlan(), smallSettings());
   ASSERT_TRUE(p.ok()) << p.why();

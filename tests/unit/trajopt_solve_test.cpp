@@ -15,7 +15,7 @@ namespace {
 
 OptimizerSettings testSettings() {
   OptimizerSettings s;
-  s.knots = 40;
+  s.knots = 30;
   return s;
 }
 
@@ -168,7 +168,7 @@ TEST(TrajoptFailure, InfeasibleGoalIsReportedAndThePlanKept) {
   far.goal.x += 1.0;
   OptimizerSettings s = testSettings();
   s.knots = 20;
-  s.max_iterations = 300;
+  s.max_iterations = 100;
   const PlanOptimizer opt(test::defaultModel(), s);
   const OptimizedPlan out = opt.optimize(far);
   EXPECT_FALSE(out.success);

@@ -13,9 +13,8 @@ ContactConstraint::ContactConstraint(const RbsfModel& model, const DecisionLayou
   for (int k = 0; k < layout_.knots(); ++k)
     for (int i = 0; i < m_; ++i) {
       columns(k, i, cols);
-      const int row = 2 * (k * m_ + i);
-      for (int r = 0; r < 2; ++r)
-        for (int c = 0; c < kLocal; ++c) structure_.emplace_back(row + r, cols[c]);
+      for (int r = 0; r < rowsAt(k); ++r)
+        for (int c = 0; c < kLocal; ++c) structure_.emplace_back(row(k, i) + r, cols[c]);
     }
 }
 
@@ -31,11 +30,12 @@ void ContactConstraint::columns(int k, int i, int* cols) const {
 void ContactConstraint::bounds(VectorRef lower, VectorRef upper) const {
   for (int k = 0; k < layout_.knots(); ++k)
     for (int i = 0; i < m_; ++i) {
-      const int row = 2 * (k * m_ + i);
-      lower[row] = upper[row] = 0.0;
+      const int r = row(k, i);
+      lower[r] = upper[r] = 0.0;
+      if (k == 0) continue;
       const bool on = schedule_.knotRole(k, i) != ContactRole::kOff;
-      lower[row + 1] = on ? 0.0 : -kInfinity;
-      upper[row + 1] = 0.0;
+      lower[r + 1] = on ? 0.0 : -kInfinity;
+      upper[r + 1] = 0.0;
     }
 }
 
@@ -46,8 +46,10 @@ void ContactConstraint::values(const ConstVectorRef& z, VectorRef g) const {
     for (int i = 0; i < m_; ++i) {
       columns(k, i, cols);
       for (int c = 0; c < kLocal; ++c) local[c] = z[cols[c]];
-      const int row = 2 * (k * m_ + i);
-      residual<double>(i, local, g[row], g[row + 1]);
+      double te, ne;
+      residual<double>(i, local, te, ne);
+      g[row(k, i)] = te;
+      if (k > 0) g[row(k, i) + 1] = ne;
     }
 }
 
@@ -63,7 +65,8 @@ void ContactConstraint::jacobian(const ConstVectorRef& z, double* values) const 
       AD te, ne;
       residual<AD>(i, local, te, ne);
       for (int c = 0; c < kLocal; ++c) values[e++] = te.derivatives()[c];
-      for (int c = 0; c < kLocal; ++c) values[e++] = ne.derivatives()[c];
+      if (k > 0)
+        for (int c = 0; c < kLocal; ++c) values[e++] = ne.derivatives()[c];
     }
 }
 
@@ -91,8 +94,9 @@ void ContactConstraint::addHessian(const ConstVectorRef& z, const double* lambda
       seedSecondOrder(x, local);
       AD6x2 te, ne;
       residual<AD6x2>(i, local, te, ne);
-      const int row = 2 * (k * m_ + i);
-      const AD6x2 phi = lambda[row] * te + lambda[row + 1] * ne;
+      const int r = row(k, i);
+      const double ln = k == 0 ? 0.0 : lambda[r + 1];
+      const AD6x2 phi = lambda[r] * te + ln * ne;
       for (int a = 0; a < kLocal; ++a)
         for (int b = 0; b <= a; ++b) values[*slot++] += phi.derivatives()[a].derivatives()[b];
     }

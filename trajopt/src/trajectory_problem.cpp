@@ -27,6 +27,9 @@ TrajectoryProblem::TrajectoryProblem(const RbsfModel& model, const planner::Plan
   sets_.push_back(std::make_unique<FrictionConeConstraint>(
       *layout_, schedule_, model.cell().friction.mu_static, settings.cone_margin));
   costs_.push_back(std::make_unique<EffortCost>(model, *layout_, schedule_));
+  if (settings.force_weight > 0.0)
+    costs_.push_back(
+        std::make_unique<ContactForceCost>(model, *layout_, schedule_, settings.force_weight));
   if (settings.smoothness_weight > 0.0)
     costs_.push_back(
         std::make_unique<SmoothnessCost>(model, *layout_, schedule_, settings.smoothness_weight));

@@ -15,6 +15,8 @@ namespace rbsf::trajopt {
 ///   n_i . e_i = 0     when the contact is on (stick or slide) in a run touching the knot,
 ///   n_i . e_i <= 0    otherwise (n_i inward: the tip stays outside, no penetration).
 /// t_i = R(phi) t(xi_i), n_i = S t_i. Row order: knot-major, then finger, then (t, n).
+/// Knot 0 has only the t rows: q_0 = plan.q0 is fixed, so n . e there would constrain
+/// nothing but xi_0 (along which it is stationary at the foot point): a zero row.
 /// Jacobian by AutoDiff over (x, y, phi, theta, l_i, xi_i): a dense 2 x 6 block; Hessian
 /// of lambda_t (t . e) + lambda_n (n . e) by nested AutoDiff over the same six.
 class ContactConstraint final : public ConstraintSet {
@@ -22,7 +24,7 @@ class ContactConstraint final : public ConstraintSet {
   ContactConstraint(const RbsfModel& model, const DecisionLayout& layout, const Schedule& schedule);
 
   std::string name() const override { return "contact"; }
-  int rows() const override { return 2 * m_ * layout_.knots(); }
+  int rows() const override { return 2 * m_ * layout_.knots() - m_; }
   void bounds(VectorRef lower, VectorRef upper) const override;
   void values(const ConstVectorRef& z, VectorRef g) const override;
   const std::vector<std::pair<int, int>>& structure() const override { return structure_; }
@@ -36,6 +38,9 @@ class ContactConstraint final : public ConstraintSet {
 
  private:
   void columns(int k, int i, int* cols) const;
+  /// \brief Row of (t . e) of finger i at knot k; (n . e) follows it when k > 0.
+  int row(int k, int i) const { return k == 0 ? i : m_ + 2 * ((k - 1) * m_ + i); }
+  int rowsAt(int k) const { return k == 0 ? 1 : 2; }
 
   const RbsfModel& model_;
   DecisionLayout layout_;

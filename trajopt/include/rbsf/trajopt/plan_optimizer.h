@@ -19,6 +19,8 @@ namespace rbsf::trajopt {
 struct OptimizerSettings {
   int knots = 100;                  ///< collocation intervals over the whole plan (>= 2 per phase)
   double smoothness_weight = 0.01;  ///< weight of the integral of tau_dot^T W tau_dot [s^2]
+  /// \brief Weight of the least-norm contact-force term (ContactForceCost) [-].
+  double force_weight = 1e-3;
   double duration_min_scale = 0.5;  ///< each phase's duration within [min, max] x planned
   double duration_max_scale = 2.0;
   double cone_margin = 0.9;  ///< sticking forces kept within margin * mu_s
