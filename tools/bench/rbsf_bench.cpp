@@ -144,7 +144,10 @@ std::string describe(const LogRun& r, double time_limit, const std::vector<std::
   if (!get("optimizer success BOOLEAN").empty())
     out +=
         get("optimizer success BOOLEAN") == "1"
-            ? "; optimised, cost -" + get("cost reduction REAL").substr(0, 5)
+            ? "; optimised, cost reduction " +
+                  std::to_string(static_cast<int>(
+                      std::lround(100.0 * std::atof(get("cost reduction REAL").c_str())))) +
+                  "%"
             : "; optimiser: " + enumName(enums, "optimizer status", get("optimizer status ENUM"));
   return out;
 }
