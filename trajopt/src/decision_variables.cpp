@@ -57,6 +57,23 @@ void DecisionVariables::bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) c
   }
 }
 
+Eigen::VectorXd DecisionVariables::scaling() const {
+  const Cell& cell = model_.cell();
+  const int m = model_.numFingers();
+  const double w_o = cell.object.mass * std::max(cell.gravity, 1.0);
+  Eigen::VectorXd s = Eigen::VectorXd::Ones(layout_.size());
+  for (int k = 0; k < layout_.knots(); ++k) {
+    s[layout_.tau(k) + layout::kTauTheta] = 1.0 / cell.base.torque_limit;
+    for (int i = 0; i < m; ++i) {
+      s[layout_.tau(k) + layout::fingerForce(i)] = 1.0 / cell.fingers[i].force_limit;
+      s[layout_.fn(k) + i] = s[layout_.ft(k) + i] = 1.0 / w_o;
+    }
+  }
+  for (int j = 0; j < layout_.runs(); ++j)
+    s[layout_.duration(j)] = 1.0 / schedule_.runs[j].duration;
+  return s;
+}
+
 double DecisionVariables::knotTime(const Eigen::Ref<const Eigen::VectorXd>& z, int k) const {
   double t = 0.0;
   for (int j = 0; j < layout_.runs(); ++j) {

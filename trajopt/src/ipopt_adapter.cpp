@@ -40,6 +40,16 @@ bool IpoptAdapter::get_starting_point(Index n, bool init_x, Number* x, bool init
   return true;
 }
 
+bool IpoptAdapter::get_scaling_parameters(Number& obj_scaling, bool& use_x_scaling, Index n,
+                                          Number* x_scaling, bool& use_g_scaling, Index, Number*) {
+  obj_scaling = 1.0;
+  use_x_scaling = true;
+  const Eigen::VectorXd s = problem_.variables().scaling();
+  std::copy_n(s.data(), n, x_scaling);
+  use_g_scaling = false;
+  return true;
+}
+
 bool IpoptAdapter::eval_f(Index n, const Number* x, bool, Number& obj_value) {
   obj_value = problem_.objective(Map(x, n));
   return std::isfinite(obj_value);

@@ -30,6 +30,9 @@ class IpoptAdapter final : public Ipopt::TNLP {
   bool get_starting_point(Ipopt::Index n, bool init_x, Ipopt::Number* x, bool init_z,
                           Ipopt::Number* z_L, Ipopt::Number* z_U, Ipopt::Index m, bool init_lambda,
                           Ipopt::Number* lambda) override;
+  bool get_scaling_parameters(Ipopt::Number& obj_scaling, bool& use_x_scaling, Ipopt::Index n,
+                              Ipopt::Number* x_scaling, bool& use_g_scaling, Ipopt::Index m,
+                              Ipopt::Number* g_scaling) override;
   bool eval_f(Ipopt::Index n, const Ipopt::Number* x, bool new_x,
               Ipopt::Number& obj_value) override;
   bool eval_grad_f(Ipopt::Index n, const Ipopt::Number* x, bool new_x,

@@ -131,6 +131,7 @@ OptimizedPlan PlanOptimizer::optimize(const planner::Plan& plan) const {
   // PORD ordering: about a third less factorization time than MUMPS's automatic choice on
   // the benchmark's 100-knot problems (block-banded KKT with one dense row per run).
   o.SetIntegerValue("mumps_pivot_order", 4);
+  o.SetStringValue("nlp_scaling_method", "user-scaling");  // DecisionVariables::scaling()
   o.SetStringValue("hessian_approximation", settings_.exact_hessian ? "exact" : "limited-memory");
   o.SetIntegerValue("print_level", settings_.print_level);
   o.SetIntegerValue("max_iter", settings_.max_iterations);

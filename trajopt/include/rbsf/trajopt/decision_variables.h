@@ -33,6 +33,10 @@ class DecisionVariables {
 
   void bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) const;
   Eigen::VectorXd initialGuess() const;
+  /// \brief Ipopt's variable scaling (x_scaled = s x): 1 for q, v, xi; 1 / limit for tau;
+  ///        1 / W_o (object weight) for f_n, f_t; 1 / planned duration for T_j. The scaled
+  ///        variables are all of order one.
+  Eigen::VectorXd scaling() const;
   /// \brief Planned time of knot k for the durations in z [s].
   double knotTime(const Eigen::Ref<const Eigen::VectorXd>& z, int k) const;
 
