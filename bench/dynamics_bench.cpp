@@ -34,5 +34,3 @@ BENCHMARK(BM_ForwardDynamicsU)->Arg(2)->Arg(3)->Arg(4)->Arg(6)->Arg(8);
 
 }  // namespace
 }  // namespace rbsf
-
-BENCHMARK_MAIN();

@@ -105,5 +105,3 @@ BENCHMARK(BM_SampleAgain)->ArgNames({"U", "secondary"})->Args({0, 1})->Args({1, 
 
 }  // namespace
 }  // namespace rbsf
-
-BENCHMARK_MAIN();

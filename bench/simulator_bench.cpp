@@ -3,7 +3,7 @@
 // paper 2.2), and the part sliding frictionlessly on m = 3 fingers (phase U).
 // Also the 1 ms control loop's other two calls: sampling a reference of an optimised
 // plan's size (101 knots, 100 tau ramps) and the tracking controller.
-// Run: build/bench/rbsf_simulator_bench --benchmark_repetitions=10
+// Part of build/bench/rbsf_micro_bench (micro_bench_main.cpp).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -144,5 +144,3 @@ BENCHMARK(BM_TrackingControllerCompute);
 
 }  // namespace
 }  // namespace rbsf
-
-BENCHMARK_MAIN();

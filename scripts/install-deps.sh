@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
-  ompl-demos
+  ompl-demos python3 sqlite3
   coinor-libipopt-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -13,21 +13,26 @@ double angleDifference(double a, double b) {
   return d;
 }
 
+double goalAngleError(double phi, double phi_goal, bool absolute_angle) {
+  return absolute_angle ? phi - phi_goal : angleDifference(phi, phi_goal);
+}
+
 PoseGoal::PoseGoal(const ompl::base::SpaceInformationPtr& si, const Pose& goal,
                    double position_tolerance, double angle_tolerance,
-                   const SupportValidityChecker& support)
+                   const SupportValidityChecker& support, bool absolute_angle)
     : ompl::base::GoalRegion(si),
       goal_(goal),
       position_tolerance_(position_tolerance),
       angle_tolerance_(angle_tolerance),
-      support_(support) {
+      support_(support),
+      absolute_angle_(absolute_angle) {
   setThreshold(1.0);
 }
 
 double PoseGoal::distanceGoal(const ompl::base::State* state) const {
   const double* x = state->as<SimStateSpace::StateType>()->values;
   const double dp = std::hypot(x[layout::kX] - goal_.x, x[layout::kY] - goal_.y);
-  const double da = std::abs(angleDifference(x[layout::kPhi], goal_.phi));
+  const double da = std::abs(goalAngleError(x[layout::kPhi], goal_.phi, absolute_angle_));
   return std::max(dp / position_tolerance_, da / angle_tolerance_);
 }
 

@@ -9,11 +9,6 @@
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/control/PathControl.h>
 #include <ompl/control/SpaceInformation.h>
-#include <ompl/control/planners/est/EST.h>
-#include <ompl/control/planners/kpiece/KPIECE1.h>
-#include <ompl/control/planners/pdst/PDST.h>
-#include <ompl/control/planners/rrt/RRT.h>
-#include <ompl/control/planners/sst/SST.h>
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
@@ -23,7 +18,7 @@
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/planner/goal.h"
 #include "rbsf/planner/projection.h"
-#include "rbsf/planner/propagator.h"
+#include "rbsf/planner/stop_at_goal_planner.h"
 
 namespace rbsf::planner {
 
@@ -41,33 +36,6 @@ std::string poseText(const Pose& p) {
   char buf[128];
   std::snprintf(buf, sizeof buf, "(%.4g, %.4g, %.4g deg)", p.x, p.y, p.phi * 180.0 / M_PI);
   return buf;
-}
-
-ob::PlannerPtr makePlanner(const std::string& name, const oc::SpaceInformationPtr& si,
-                           double goal_bias) {
-  if (name == "KPIECE1") {
-    auto p = std::make_shared<oc::KPIECE1>(si);
-    p->setGoalBias(goal_bias);
-    return p;
-  }
-  if (name == "RRT") {
-    auto p = std::make_shared<oc::RRT>(si);
-    p->setGoalBias(goal_bias);
-    return p;
-  }
-  if (name == "SST") {
-    auto p = std::make_shared<oc::SST>(si);
-    p->setGoalBias(goal_bias);
-    return p;
-  }
-  if (name == "EST") {
-    auto p = std::make_shared<oc::EST>(si);
-    p->setGoalBias(goal_bias);
-    return p;
-  }
-  auto p = std::make_shared<oc::PDST>(si);
-  p->setGoalBias(goal_bias);
-  return p;
 }
 
 }  // namespace
@@ -137,18 +105,18 @@ VecQ ReorientationPlanner::checkProblem(const Problem& problem) const {
   throw InputError(why);
 }
 
-bool ReorientationPlanner::solve(const Problem& problem, Plan& plan) {
-  const VecQ q0 = checkProblem(problem);
+PlannerSetup ReorientationPlanner::setup(const Problem& problem) const {
+  PlannerSetup out;
+  out.q0 = checkProblem(problem);
   const PlannerSettings& s = settings_;
   const int m = model_.numFingers();
   const double dt = simulator_.settings().time_step;
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-  ompl::RNG::setSeed(s.seed == 0 ? 1 : s.seed);
 
-  auto space = std::make_shared<SimStateSpace>(model_, s.speed);
-  space->registerDefaultProjection(
-      std::make_shared<PhiThetaProjection>(space.get(), s.projection_cell, s.projection_cell));
-  auto cspace = std::make_shared<oc::RealVectorControlSpace>(space, model_.controlDim());
+  out.space = std::make_shared<SimStateSpace>(model_, s.speed);
+  out.space->registerDefaultProjection(
+      std::make_shared<PhiThetaProjection>(out.space.get(), s.projection_cell, s.projection_cell));
+  auto cspace = std::make_shared<oc::RealVectorControlSpace>(out.space, model_.controlDim());
   ob::RealVectorBounds cb(model_.controlDim());
   const Cell& cell = model_.cell();
   cb.setLow(layout::kTauTheta, -cell.base.torque_limit);
@@ -158,31 +126,44 @@ bool ReorientationPlanner::solve(const Problem& problem, Plan& plan) {
     cb.setHigh(layout::fingerForce(i), cell.fingers[i].force_limit);
   }
   cspace->setBounds(cb);
-  const SimStateSpace& sp = *space;
-  cspace->setControlSamplerAllocator([this, &sp, &s](const oc::ControlSpace* cs) {
-    return std::make_shared<PhaseControlSampler>(cs, model_, sp, s.sampler,
-                                                 s.validity.touch_distance);
+  // The sampler refers to the space and the settings, which outlive it (the setup holds
+  // the space; the settings belong to this planner).
+  const SimStateSpace* sp = out.space.get();
+  const RbsfModel* model = &model_;
+  const PlannerSettings* ps = &settings_;
+  cspace->setControlSamplerAllocator([model, sp, ps](const oc::ControlSpace* cs) {
+    return std::make_shared<PhaseControlSampler>(cs, *model, *sp, ps->sampler,
+                                                 ps->validity.touch_distance);
   });
-  auto si = std::make_shared<oc::SpaceInformation>(space, cspace);
-  auto checker = std::make_shared<SupportValidityChecker>(si, model_, s.validity);
-  si->setStateValidityChecker(checker);
-  auto propagator = std::make_shared<SimPropagator>(si, simulator_, sp);
-  si->setStatePropagator(propagator);
+  auto si = std::make_shared<oc::SpaceInformation>(out.space, cspace);
+  out.checker = std::make_shared<SupportValidityChecker>(si, model_, s.validity);
+  si->setStateValidityChecker(out.checker);
+  out.propagator = std::make_shared<SimPropagator>(si, simulator_, *out.space);
+  si->setStatePropagator(out.propagator);
   si->setPropagationStepSize(s.steps_per_control * dt);
   si->setMinMaxControlDuration(s.min_control_steps, s.max_control_steps);
   si->setup();
 
-  auto pdef = std::make_shared<ob::ProblemDefinition>(si);
+  out.simple_setup = std::make_shared<oc::SimpleSetup>(si);
   ob::State* start = si->allocState();
-  space->fromSim(SimState(q0, VecQ::Zero(q0.size())), start);
-  pdef->addStartState(start);
+  out.space->fromSim(SimState(out.q0, VecQ::Zero(out.q0.size())), start);
+  out.simple_setup->getProblemDefinition()->addStartState(start);
   si->freeState(start);
-  auto goal = std::make_shared<PoseGoal>(si, problem.goal, s.position_tolerance, s.angle_tolerance,
-                                         *checker);
-  pdef->setGoal(goal);
-  ob::PlannerPtr planner = makePlanner(s.planner, si, s.goal_bias);
-  planner->setProblemDefinition(pdef);
-  planner->setup();
+  out.goal = std::make_shared<PoseGoal>(si, problem.goal, s.position_tolerance, s.angle_tolerance,
+                                        *out.checker, problem.absolute_angle);
+  out.simple_setup->setGoal(out.goal);
+  out.simple_setup->setPlanner(std::make_shared<StopAtGoalPlanner>(
+      makeControlPlanner(s.planner, si, s.goal_bias), out.goal));
+  return out;
+}
+
+bool ReorientationPlanner::solve(const Problem& problem, Plan& plan) {
+  const PlannerSettings& s = settings_;
+  ompl::RNG::setSeed(s.seed == 0 ? 1 : s.seed);
+  const PlannerSetup setup = this->setup(problem);
+  setup.simple_setup->setup();
+  const SimPropagator& propagator = *setup.propagator;
+  const PoseGoal& goal = *setup.goal;
 
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
@@ -192,25 +173,33 @@ bool ReorientationPlanner::solve(const Problem& problem, Plan& plan) {
     const double t = elapsed();
     if (s.progress && t - last_report >= 1.0) {
       last_report = t;
-      s.progress({t, propagator->propagations(), goal->bestDistance()});
+      s.progress({t, propagator.propagations(), goal.bestDistance()});
     }
     const bool cancelled = s.cancel != nullptr && s.cancel->load(std::memory_order_relaxed);
-    return cancelled || t >= s.time_limit || goal->bestDistance() <= 1.0;
+    return cancelled || t >= s.time_limit;  // the goal stops it too (StopAtGoalPlanner)
   });
-  planner->solve(ptc);
+  setup.simple_setup->getPlanner()->solve(ptc);
   const double planning_time = elapsed();
-  best_distance_ = goal->bestDistance();
-  propagations_ = propagator->propagations();
+  best_distance_ = goal.bestDistance();
+  propagations_ = propagator.propagations();
+  return makePlan(problem, setup, planning_time, plan);
+}
 
+bool ReorientationPlanner::makePlan(const Problem& problem, const PlannerSetup& setup,
+                                    double planning_time, Plan& plan) const {
+  const PlannerSettings& s = settings_;
+  const ob::ProblemDefinitionPtr& pdef = setup.simple_setup->getProblemDefinition();
   const ob::PathPtr path = pdef->getSolutionPath();
   if (!path) return false;
+  const double dt = simulator_.settings().time_step;
+  const VecQ& q0 = setup.q0;
   auto& pc = static_cast<oc::PathControl&>(*path);
   plan = Plan();
   plan.status = pdef->hasExactSolution() ? "exact" : "approximate";
   plan.planner = s.planner;
   plan.seed = s.seed;
   plan.planning_time = planning_time;
-  plan.propagations = propagations_;
+  plan.propagations = setup.propagator->propagations();
   plan.time_step = dt;
   plan.steps_per_control = s.steps_per_control;
   plan.start = problem.start;
@@ -239,10 +228,11 @@ bool ReorientationPlanner::solve(const Problem& problem, Plan& plan) {
     ++e;
   }
   const VecQ& qf = ends.empty() ? q0 : ends.back().q;
-  plan.goal_distance =
-      std::max(std::hypot(qf[layout::kX] - problem.goal.x, qf[layout::kY] - problem.goal.y) /
-                   s.position_tolerance,
-               std::abs(angleDifference(qf[layout::kPhi], problem.goal.phi)) / s.angle_tolerance);
+  plan.goal_distance = std::max(
+      std::hypot(qf[layout::kX] - problem.goal.x, qf[layout::kY] - problem.goal.y) /
+          s.position_tolerance,
+      std::abs(goalAngleError(qf[layout::kPhi], problem.goal.phi, problem.absolute_angle)) /
+          s.angle_tolerance);
   return true;
 }
 

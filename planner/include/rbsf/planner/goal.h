@@ -5,8 +5,10 @@
 /// distanceGoal = max(|(x, y) - (x_g, y_g)| / position_tolerance,
 ///                    |wrap(phi - phi_g)| / angle_tolerance)
 /// (wrap to (-pi, pi]: a pose is reached whichever way the part turned), so the goal
-/// region is distance <= 1. isSatisfied also requires the part supported (validity.h).
-/// Every call of isSatisfied records the smallest distance seen (progress and exit 3).
+/// region is distance <= 1. With absolute_angle the angle term is |phi - phi_g| unwrapped:
+/// phi is the part's accumulated angle, so phi_g = -270 deg asks for a 270 degree turn. isSatisfied
+/// also requires the part supported (validity.h). Every call of isSatisfied records the smallest
+/// distance seen (progress and exit 3).
 
 #include <limits>
 
@@ -21,7 +23,8 @@ namespace rbsf::planner {
 class PoseGoal : public ompl::base::GoalRegion {
  public:
   PoseGoal(const ompl::base::SpaceInformationPtr& si, const Pose& goal, double position_tolerance,
-           double angle_tolerance, const SupportValidityChecker& support);
+           double angle_tolerance, const SupportValidityChecker& support,
+           bool absolute_angle = false);
 
   double distanceGoal(const ompl::base::State* state) const override;
   bool isSatisfied(const ompl::base::State* state, double* distance) const override;
@@ -34,10 +37,15 @@ class PoseGoal : public ompl::base::GoalRegion {
   Pose goal_;
   double position_tolerance_, angle_tolerance_;
   const SupportValidityChecker& support_;
+  bool absolute_angle_;
   mutable double best_ = std::numeric_limits<double>::infinity();
 };
 
 /// \brief a - b wrapped to (-pi, pi].
 double angleDifference(double a, double b);
+
+/// \brief The goal's angle error phi - phi_g [rad]: wrapped to (-pi, pi], or plain when
+///        `absolute_angle` (phi_g is a total turn).
+double goalAngleError(double phi, double phi_goal, bool absolute_angle);
 
 }  // namespace rbsf::planner

@@ -12,6 +12,8 @@
 ///   - planner by name (plannerNames()): KPIECE1 (default), RRT, SST, EST, PDST,
 ///     single-threaded; ompl::RNG::setSeed(seed) before anything is created, so the same
 ///     seed and settings give the same plan when the search ends by reaching the goal.
+/// setup() builds these OMPL objects (planner_setup.h) for the benchmark tool; solve()
+/// seeds OMPL, runs the same setup and turns its solution into a Plan with makePlan().
 /// The search stops at the goal or at the time limit. The returned plan is the solution
 /// path's controls re-simulated from the start (plan.h), with each segment's simulated
 /// phase; path_mismatch compares that re-simulation with the planner's own states.
@@ -26,6 +28,7 @@
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/planner/control_sampler.h"
 #include "rbsf/planner/plan.h"
+#include "rbsf/planner/planner_setup.h"
 #include "rbsf/planner/state_space.h"
 #include "rbsf/planner/validity.h"
 
@@ -66,6 +69,11 @@ struct Problem {
   Pose start;
   double start_theta = 0.0;
   Pose goal;
+  /// \brief false: the goal angle is a pose, reached whichever way the part turns (phi
+  ///        compared modulo 2 pi, so 270 deg is -90 deg). true: the goal angle is the
+  ///        part's total turn from phi = 0 (phi is never wrapped along a motion), so a
+  ///        start at 0 and a goal at -270 deg asks for three quarters of a clockwise turn.
+  bool absolute_angle = false;
 };
 
 /// \brief Planner names accepted by PlannerSettings::planner.
@@ -87,6 +95,15 @@ class ReorientationPlanner {
   /// \brief Search. Returns false (and leaves `plan` empty) only when the planner produced
   ///        no path at all; otherwise plan.status says "exact" or "approximate".
   bool solve(const Problem& problem, Plan& plan);
+
+  /// \brief The OMPL setup for `problem` (checked with checkProblem()); OMPL not seeded.
+  PlannerSetup setup(const Problem& problem) const;
+
+  /// \brief The plan of a setup's solution path: its controls re-simulated from q0, with
+  ///        path_mismatch against the planner's states and the goal distance of the
+  ///        re-simulated end. Returns false (plan untouched) when there is no path.
+  bool makePlan(const Problem& problem, const PlannerSetup& setup, double planning_time,
+                Plan& plan) const;
 
   /// \brief Smallest goal distance reached by the last solve() (tolerance units).
   double bestDistance() const { return best_distance_; }

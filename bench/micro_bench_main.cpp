@@ -1,0 +1,8 @@
+// rbsf_micro_bench: the hot paths in one Google Benchmark program (README "Speed",
+// BENCHMARKS.md): dynamics evaluation (dynamics_bench.cpp), simulator step
+// (simulator_bench.cpp), inverse dynamics by phase (phase_control_bench.cpp), one planner
+// propagation (propagation_bench.cpp), one optimiser solve (optimizer_bench.cpp).
+//   build/bench/rbsf_micro_bench --benchmark_repetitions=10 --benchmark_report_aggregates_only
+#include <benchmark/benchmark.h>
+
+BENCHMARK_MAIN();

@@ -1,0 +1,45 @@
+#pragma once
+/// \file
+/// \brief One benchmark run: ompl::tools::Benchmark with one planner and one run on the
+///        planner's own setup (ReorientationPlanner::setup), in a process of its own.
+///
+/// OMPL 1.5's seed (ompl::RNG::setSeed) is global to the process and only takes effect
+/// before the first random number generator exists, so rbsf-bench runs every run in a
+/// fresh child process that seeds OMPL first: a run's result depends only on its seed and
+/// settings, never on which runs came before or ran beside it (--jobs, --shard).
+///
+/// rbsf's own figures are added to OMPL's run properties by the post-run event (the names
+/// are the columns of Planner Arena's runs table, spaces becoming underscores):
+/// | property | meaning |
+/// |----------|---------|
+/// | `run index INTEGER`, `seed INTEGER` | the run (run_list.h) |
+/// | `propagations INTEGER` | SimPropagator::propagate calls of the search (excluding OMPL's check
+/// of the solution path afterwards) | | `simulator steps INTEGER` | simulator steps of those
+/// propagations | | `propagations per second REAL` | propagations / OMPL's `time` | | `best goal
+/// distance REAL` | least goal distance reached (tolerance units, <= 1: goal) | | `solution
+/// duration REAL` | exact solutions: seconds of motion of the plan | | `path mismatch REAL` | exact
+/// solutions: re-simulated plan vs the planner's states | | `optimizer success BOOLEAN`, `optimizer
+/// status ENUM` (Ipopt's status, enum "optimizer status" in the log), `optimizer iterations
+/// INTEGER`, `optimizer time REAL`, `cost before REAL`, `cost after REAL`, `cost reduction REAL` |
+/// with --optimize, exact solutions: PlanOptimizer's solve; cost reduction = 1 - after / before |
+
+#include <string>
+
+#include "rbsf/bench/problem_suite.h"
+#include "rbsf/bench/run_list.h"
+
+namespace rbsf::bench {
+
+/// \brief Settings shared by every run.
+struct RunSettings {
+  double time_limit = 30.0;  ///< [s]
+  bool optimize = false;
+};
+
+/// \brief Run `spec` on `problem` (model of its cell) and write the one-run OMPL log to
+///        `log_path` (atomically). Seeds OMPL: call once per process, before anything
+///        else has created an OMPL random number generator.
+void runSingle(const BenchProblem& problem, const RbsfModel& model, const RunSpec& spec,
+               const RunSettings& settings, const std::string& log_path);
+
+}  // namespace rbsf::bench

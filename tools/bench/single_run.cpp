@@ -1,0 +1,155 @@
+#include "rbsf/bench/single_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <ompl/control/PathControl.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "rbsf/bench/benchmark_log.h"
+#include "rbsf/trajopt/plan_optimizer.h"
+
+namespace rbsf::bench {
+
+namespace ob = ompl::base;
+namespace oc = ompl::control;
+
+namespace {
+
+std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+/// Values of the "optimizer status" enum: Ipopt's return statuses as PlanOptimizer names
+/// them, its wall-time stop, and "Not_Solved" (no NLP built).
+const std::vector<std::string>& optimizerStatuses() {
+  static const std::vector<std::string> names = {"Solve_Succeeded",
+                                                 "Solved_To_Acceptable_Level",
+                                                 "Infeasible_Problem_Detected",
+                                                 "Search_Direction_Becomes_Too_Small",
+                                                 "Diverging_Iterates",
+                                                 "User_Requested_Stop",
+                                                 "Feasible_Point_Found",
+                                                 "Maximum_Iterations_Exceeded",
+                                                 "Restoration_Failed",
+                                                 "Error_In_Step_Computation",
+                                                 "Maximum_CpuTime_Exceeded",
+                                                 "Maximum_WallTime_Exceeded",
+                                                 "Not_Enough_Degrees_Of_Freedom",
+                                                 "Invalid_Problem_Definition",
+                                                 "Invalid_Option",
+                                                 "Invalid_Number_Detected",
+                                                 "Unrecoverable_Exception",
+                                                 "NonIpopt_Exception_Thrown",
+                                                 "Insufficient_Memory",
+                                                 "Internal_Error",
+                                                 "Not_Solved",
+                                                 "Unknown_Status"};
+  return names;
+}
+
+std::string optimizerStatusIndex(const std::string& status) {
+  const auto& names = optimizerStatuses();
+  const auto it = std::find(names.begin(), names.end(), status);
+  return std::to_string(it == names.end() ? names.size() - 1 : it - names.begin());
+}
+
+/// Propagations OMPL's PathControl::check() makes on a correct path: each control
+/// re-propagated step by step (propagateWhileValid), floor(0.5 + duration / step) calls.
+std::uint64_t checkPropagations(const oc::PathControl& path, double step) {
+  std::uint64_t n = 0;
+  for (std::size_t k = 0; k < path.getControlCount(); ++k)
+    n += static_cast<std::uint64_t>(std::floor(0.5 + path.getControlDuration(k) / step));
+  return n;
+}
+
+}  // namespace
+
+void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& spec,
+               const RunSettings& rs, const std::string& log_path) {
+  ompl::RNG::setSeed(spec.seed);
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  planner::PlannerSettings s;
+  s.planner = spec.planner;
+  s.time_limit = rs.time_limit;
+  s.seed = spec.seed;
+  s.position_tolerance = bp.position_tolerance;
+  s.angle_tolerance = bp.angle_tolerance;
+  planner::ReorientationPlanner rp(model, s);
+  const planner::PlannerSetup setup = rp.setup(bp.problem);
+  oc::SimpleSetup& ss = *setup.simple_setup;
+
+  ompl::tools::Benchmark benchmark(ss, bp.name);
+  benchmark.addPlanner(ss.getPlanner());
+  benchmark.setPostRunEvent([&](const ob::PlannerPtr&, ompl::tools::Benchmark::RunProperties& run) {
+    // rbsf's columns exist in every run (empty: NULL), also when no run solved.
+    for (const char* key :
+         {"best goal distance REAL", "solution duration REAL", "path mismatch REAL"})
+      run[key] = "";
+    if (rs.optimize)
+      for (const char* key :
+           {"optimizer success BOOLEAN", "optimizer status ENUM", "optimizer iterations INTEGER",
+            "optimizer time REAL", "cost before REAL", "cost after REAL", "cost reduction REAL"})
+        run[key] = "";
+    run["run index INTEGER"] = std::to_string(spec.run);
+    run["seed INTEGER"] = std::to_string(spec.seed);
+    const ob::ProblemDefinitionPtr& pdef = ss.getProblemDefinition();
+    const ob::PathPtr path = pdef->getSolutionPath();
+    std::uint64_t check = 0;
+    const auto correct = run.find("correct solution BOOLEAN");
+    if (path && correct != run.end() && correct->second == "1")
+      check = checkPropagations(static_cast<const oc::PathControl&>(*path),
+                                ss.getSpaceInformation()->getPropagationStepSize());
+    const std::uint64_t props = setup.propagator->propagations() - check;
+    const std::uint64_t steps =
+        setup.propagator->steps() - check * static_cast<std::uint64_t>(s.steps_per_control);
+    const double time = std::stod(run["time REAL"]);
+    run["propagations INTEGER"] = std::to_string(props);
+    run["simulator steps INTEGER"] = std::to_string(steps);
+    if (time > 0.0) run["propagations per second REAL"] = num(static_cast<double>(props) / time);
+    if (std::isfinite(setup.goal->bestDistance()))
+      run["best goal distance REAL"] = num(setup.goal->bestDistance());
+    if (!pdef->hasExactSolution()) return;
+    planner::Plan plan;
+    if (!rp.makePlan(bp.problem, setup, time, plan)) return;
+    run["solution duration REAL"] = num(plan.duration());
+    run["path mismatch REAL"] = num(plan.path_mismatch);
+    if (!rs.optimize) return;
+    // The optimiser after the run: OMPL's time is the planner's alone.
+    const trajopt::PlanOptimizer optimizer(model);
+    const trajopt::OptimizedPlan opt = optimizer.optimize(plan);
+    const planner::OptimizationSummary& o = opt.plan.optimization;
+    run["optimizer success BOOLEAN"] = opt.success ? "1" : "0";
+    run["optimizer status ENUM"] = optimizerStatusIndex(o.status);
+    run["optimizer iterations INTEGER"] = std::to_string(o.iterations);
+    run["optimizer time REAL"] = num(o.solve_time);
+    if (std::isfinite(o.cost_before)) run["cost before REAL"] = num(o.cost_before);
+    if (opt.success && std::isfinite(o.cost_after)) {
+      run["cost after REAL"] = num(o.cost_after);
+      if (o.cost_before > 0.0) run["cost reduction REAL"] = num(1.0 - o.cost_after / o.cost_before);
+    }
+  });
+  // One run, no console output, no path simplification (geometric only).
+  const ompl::tools::Benchmark::Request request(rs.time_limit, 4096.0, 1, 0.05, false, false,
+                                                false);
+  benchmark.benchmark(request);
+  std::ostringstream text;
+  if (!benchmark.saveResultsToStream(text))
+    throw std::runtime_error("OMPL's benchmark recorded no run");
+  ExperimentLog log = parseLog(text.str(), "OMPL's benchmark log");
+  if (rs.optimize) {
+    std::string e = "optimizer status";
+    for (const std::string& name : optimizerStatuses()) e += "|" + name;
+    log.enums.push_back(e);
+  }
+  writeFileAtomically(log_path, formatLog(log));
+}
+
+}  // namespace rbsf::bench
