@@ -3,6 +3,7 @@
 #   scripts/rbsf.sh run       install what is missing, build Release, plan the 180 degree turn
 #   scripts/rbsf.sh test      install what is missing, build Release, run the whole test suite
 #   scripts/rbsf.sh sanitize  build with AddressSanitizer + UBSan and run the unit tests
+#   scripts/rbsf.sh consumer  install build/ into build/install, build tests/consumer against it, run it
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"
@@ -12,6 +13,15 @@ configure_build() {  # $1 build dir, rest: extra cmake args
   local dir="$1"; shift
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
   cmake --build "$dir" -j "$jobs"
+}
+
+consumer() {  # the installed package as an outside project sees it (tests/consumer)
+  rm -rf build/install build/consumer
+  cmake --install build --prefix "$root/build/install" >/dev/null
+  cmake -S tests/consumer -B build/consumer -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
+  cmake --build build/consumer -j "$jobs"
+  ./build/consumer/rbsf_consumer build/install/share/rbsf/cells/default.yaml
 }
 
 cmd="${1:-}"
@@ -27,6 +37,11 @@ case "$cmd" in
     ./scripts/install-deps.sh
     configure_build build
     ctest --test-dir build --output-on-failure -j "$jobs"
+    consumer
+    ;;
+  consumer)
+    configure_build build
+    consumer
     ;;
   sanitize)
     ./scripts/install-deps.sh
@@ -36,7 +51,7 @@ case "$cmd" in
       ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
     ;;
   *)
-    echo "usage: scripts/rbsf.sh run|test|sanitize" >&2
+    echo "usage: scripts/rbsf.sh run|test|sanitize|consumer" >&2
     exit 2
     ;;
 esac
