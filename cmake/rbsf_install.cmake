@@ -17,6 +17,23 @@ if(NOT DEFINED RBSF_CONFIG_EXTRA)
   set(RBSF_CONFIG_EXTRA "")
 endif()
 
+# Libraries and their headers (one include/ folder per module).
+set(_rbsf_modules dynamics planner controller)
+if(TARGET rbsf_trajopt)
+  list(APPEND _rbsf_modules trajopt)
+  string(APPEND RBSF_CONFIG_EXTRA
+    "find_dependency(PkgConfig)\npkg_check_modules(IPOPT REQUIRED IMPORTED_TARGET ipopt)\n")
+else()
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/trajopt/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endif()
+foreach(_module IN LISTS _rbsf_modules)
+  install(TARGETS rbsf_${_module} EXPORT rbsfTargets
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${_module}/include/
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endforeach()
+
 install(EXPORT rbsfTargets NAMESPACE rbsf:: DESTINATION ${RBSF_CMAKE_DIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/rbsfConfig.cmake.in
   ${PROJECT_BINARY_DIR}/rbsfConfig.cmake INSTALL_DESTINATION ${RBSF_CMAKE_DIR})

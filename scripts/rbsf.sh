@@ -3,6 +3,7 @@
 #   scripts/rbsf.sh run       install what is missing, build Release, plan the 180 degree turn
 #   scripts/rbsf.sh test      install what is missing, build Release, run the whole test suite
 #   scripts/rbsf.sh sanitize  build with AddressSanitizer + UBSan and run the unit tests
+#   scripts/rbsf.sh tsan      build the controller facade's tests with ThreadSanitizer, run them
 #   scripts/rbsf.sh consumer  install build/ into build/install, build tests/consumer against it, run it
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -39,6 +40,15 @@ case "$cmd" in
     ctest --test-dir build --output-on-failure -j "$jobs"
     consumer
     ;;
+  tsan)
+    # Only what the facade's tests need (dynamics, planner, controller and their test).
+    ./scripts/install-deps.sh
+    cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Release -DRBSF_TSAN=ON \
+      -DRBSF_BUILD_BENCHMARKS=OFF >/dev/null
+    cmake --build build-tsan -j "$jobs" --target rbsf_controller_tests
+    TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$root/scripts/tsan.supp" \
+      ./build-tsan/tests/rbsf_controller_tests
+    ;;
   consumer)
     configure_build build
     consumer
@@ -51,7 +61,7 @@ case "$cmd" in
       ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
     ;;
   *)
-    echo "usage: scripts/rbsf.sh run|test|sanitize|consumer" >&2
+    echo "usage: scripts/rbsf.sh run|test|sanitize|tsan|consumer" >&2
     exit 2
     ;;
 esac
