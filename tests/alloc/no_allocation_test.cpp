@@ -11,6 +11,7 @@
 #include "rbsf/dynamics/holding.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/dynamics/small_solvers.h"
+#include "rbsf/dynamics/tracking_controller.h"
 
 namespace rbsf {
 namespace {
@@ -96,6 +97,34 @@ TEST_F(NoAllocation, SimulatorStep) {
           << m;
     }
   }
+}
+
+TEST_F(NoAllocation, ReferenceSamplingAndTracking) {
+  const RbsfModel model(test::makeCell(test::ShapeKind::kEllipse, 3));
+  const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.40, 0.0}, 0.0);
+  ReferenceTrajectory ref;
+  VecQ v = VecQ::Zero(7);
+  for (int k = 0; k <= 100; ++k) {
+    v[layout::kTheta] = 0.01 * k;
+    ref.addKnot(0.01 * k, q0, v);
+  }
+  const VecU tau0 = VecU::Constant(4, 10.0), tau1 = VecU::Constant(4, 20.0);
+  for (int j = 0; j < 10; ++j)
+    ref.addInputPiece(0.1 * j, 0.1, tau0, j % 2 ? tau1 : VecU(), Phase::kC);
+  const TrackingController controller(model, q0);
+  ReferenceSample sample;
+  VecU tau;
+  ref.sample(0.0, sample);
+  controller.compute(q0, v, sample, tau);
+  double sum = 0.0;
+  test::MallocCounter counter;
+  for (int k = -10; k < 1100; ++k) {  // also outside the plan (clamped)
+    ref.sample(1e-3 * k, sample);
+    controller.compute(q0, v, sample, tau);
+    sum += tau[0] + TrackingController::jointError(q0, sample);
+  }
+  EXPECT_EQ(counter.count(), 0);
+  EXPECT_TRUE(std::isfinite(sum));
 }
 
 }  // namespace

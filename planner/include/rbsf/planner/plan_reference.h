@@ -1,0 +1,16 @@
+#pragma once
+/// \file
+/// \brief The reference trajectory of a plan, for tracking and replay.
+
+#include "rbsf/dynamics/reference_trajectory.h"
+#include "rbsf/planner/plan.h"
+
+namespace rbsf::planner {
+
+/// \brief Knots from the plan's samples (t, q, v; a sample at the time of the previous one
+///        is skipped), input pieces from its segments back to back from t = 0 (tau held,
+///        or ramped to tau_end when present; the segment's phase).
+/// \throws InputError when the plan has no samples or segments, or bad values.
+ReferenceTrajectory makeReference(const Plan& plan);
+
+}  // namespace rbsf::planner

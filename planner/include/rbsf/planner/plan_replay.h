@@ -1,0 +1,72 @@
+#pragma once
+/// \file
+/// \brief Verification of a plan by replaying it in the simulator, and the acceptance rule
+///        of optimised plans (issue 5).
+///
+/// A replay runs round(duration / h) simulator steps of h from q0 at rest (a fresh
+/// SimState), t_n = n h. The input of step n is
+///   open loop:   tau_ff(t_n + h/2),
+///   closed loop: TrackingController on (q(t_n), v(t_n)) against q_ref(t_n), v_ref(t_n)
+///                with feed-forward tau_ff(t_n + h/2),
+/// from the plan's reference trajectory (plan_reference.h). The midpoint makes a held
+/// segment's tau exact (an open-loop replay of the planner's own plan repeats its
+/// simulation bit for bit) and is the step's average of a ramp.
+///
+/// Reported (ReplayResult):
+///   position_error  |(x, y) - (x_g, y_g)| at the end [m],
+///   angle_error     |wrap(phi - phi_g)| at the end [rad],
+///   min_f_n         least normal force over all steps of the contacts not separated in
+///                   that step [N] (0 when no contact ever touches),
+///   phases          per-step phases (an unsupported step counts as U, as in the planner),
+///                   runs shorter than ReplaySettings::min_phase_run dropped, then equal
+///                   neighbours merged (filterPhaseRuns),
+///   max_tracking_error  max over the steps of max_j |Theta_ref,j - Theta_j| at t_n, in
+///                   the joints' own units (rad for theta, m for strokes; the numbers are
+///                   compared as they are: 1 mm and 1 mrad weigh the same).
+///
+/// Acceptance (acceptReplay): the closed-loop replay ends within the position and angle
+/// tolerances of the goal (1 cm, 2 deg by default), has min_f_n >= 0, and its phase
+/// sequence equals the plan's (plannedPhases: the segments' phases weighted by their
+/// durations, filtered the same way).
+
+#include <string>
+#include <vector>
+
+#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/tracking_controller.h"
+#include "rbsf/planner/plan.h"
+
+namespace rbsf::planner {
+
+/// \brief Settings of the replay and of the acceptance rule.
+struct ReplaySettings {
+  double min_phase_run = 0.02;                ///< phase runs shorter than this dropped [s]
+  double position_tolerance = 0.01;           ///< accepted final COM error [m]
+  double angle_tolerance = 2.0 * M_PI / 180;  ///< accepted final angle error [rad]
+  TrackingSettings tracking;                  ///< gains of the closed loop
+};
+
+/// \brief Phase letters of consecutive runs (phase, duration [s]): runs shorter than
+///        `min_run` dropped, then equal neighbours merged. When every run is short the
+///        longest one is kept (a sequence is never empty for a non-empty input).
+std::string filterPhaseRuns(const std::vector<std::pair<Phase, double>>& runs, double min_run);
+
+/// \brief The plan's phase sequence by its segments (filterPhaseRuns on their durations).
+std::string plannedPhases(const Plan& plan, double min_run);
+
+/// \brief Replay `plan` open loop (controller null) or closed loop under `controller`.
+/// \throws InputError when the plan has no segments or samples or its q0 does not fit
+///         the simulator's model.
+ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
+                        const TrackingController* controller, const ReplaySettings& settings);
+
+/// \brief The acceptance rule of the file comment; `reason` (when given) receives why a
+///        replay is rejected, naming each failed criterion and by how much.
+bool acceptReplay(const Plan& plan, const ReplayResult& closed_loop, const ReplaySettings& settings,
+                  std::string* reason = nullptr);
+
+/// \brief Both replays and the verdict (the tracking controller tuned at q0).
+ReplaySummary verifyPlan(const Simulator& simulator, const Plan& plan,
+                         const ReplaySettings& settings, std::string* reason = nullptr);
+
+}  // namespace rbsf::planner

@@ -1,0 +1,21 @@
+#include "rbsf/planner/plan_reference.h"
+
+#include "rbsf/dynamics/errors.h"
+
+namespace rbsf::planner {
+
+ReferenceTrajectory makeReference(const Plan& plan) {
+  if (plan.samples.empty() || plan.segments.empty())
+    throw InputError("plan has no samples or no segments: nothing to track");
+  ReferenceTrajectory ref;
+  for (const PlanSample& s : plan.samples)
+    if (ref.numKnots() == 0 || s.t > ref.endTime()) ref.addKnot(s.t, s.q, s.v);
+  double t = 0.0;
+  for (const PlanSegment& seg : plan.segments) {
+    ref.addInputPiece(t, seg.duration, seg.tau, seg.tau_end, seg.phase);
+    t += seg.duration;
+  }
+  return ref;
+}
+
+}  // namespace rbsf::planner

@@ -1,0 +1,109 @@
+// Plan replay and acceptance on a real planner plan (the planner tests' 15 deg turn, seed
+// 7): open loop repeats the planner's own simulation, closed loop ends within tolerance,
+// the verdict flips when the goal moves; phase-run filtering.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/planner/goal.h"
+#include "rbsf/planner/plan_replay.h"
+#include "rbsf/planner/reorientation_planner.h"
+
+namespace rbsf::planner {
+namespace {
+
+class PlanReplayTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    model_ = new RbsfModel(loadCell(std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml"));
+    PlannerSettings s;
+    s.seed = 7;
+    s.time_limit = 120.0;
+    // A sample every step: the reference's knots are then the simulated states, so a
+    // replay on the plan sees no tracking error. (With the default 10 ms samples the cubic
+    // between knots is ~0.3 mm off the path; the PD reacting to that is enough to tip this
+    // plan, whose sliding phases end within 0.5 mm of the 1 cm tolerance, either way.)
+    s.sample_steps = 1;
+    planner_ = new ReorientationPlanner(*model_, s);
+    plan_ = new Plan;
+    Problem p;
+    p.start = {0.1, 0.40, 0.0};
+    p.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
+    solved_ = planner_->solve(p, *plan_) && plan_->status == "exact";
+  }
+  static void TearDownTestSuite() {
+    delete plan_;
+    delete planner_;
+    delete model_;
+  }
+  void SetUp() override { ASSERT_TRUE(solved_); }
+
+  static RbsfModel* model_;
+  static ReorientationPlanner* planner_;
+  static Plan* plan_;
+  static bool solved_;
+};
+RbsfModel* PlanReplayTest::model_ = nullptr;
+ReorientationPlanner* PlanReplayTest::planner_ = nullptr;
+Plan* PlanReplayTest::plan_ = nullptr;
+bool PlanReplayTest::solved_ = false;
+
+TEST_F(PlanReplayTest, OpenLoopRepeatsThePlannersSimulation) {
+  const ReplayResult r = replayPlan(planner_->simulator(), *plan_, nullptr, {});
+  const PlanSample& last = plan_->samples.back();
+  ASSERT_NEAR(last.t, plan_->duration(), 1e-9);
+  EXPECT_EQ(r.position_error,
+            std::hypot(last.q[layout::kX] - plan_->goal.x, last.q[layout::kY] - plan_->goal.y));
+  EXPECT_EQ(r.angle_error, std::abs(angleDifference(last.q[layout::kPhi], plan_->goal.phi)));
+  EXPECT_GE(r.min_f_n, 0.0);
+  // The reference passes through the samples, which are the same simulation.
+  EXPECT_LE(r.max_tracking_error, 1e-9);
+  EXPECT_EQ(r.phases, plannedPhases(*plan_, ReplaySettings{}.min_phase_run));
+}
+
+TEST_F(PlanReplayTest, ClosedLoopEndsWithinToleranceAndIsAccepted) {
+  std::string reason;
+  const ReplaySummary s = verifyPlan(planner_->simulator(), *plan_, {}, &reason);
+  EXPECT_TRUE(s.ran);
+  EXPECT_LE(s.closed_loop.position_error, 0.01);
+  EXPECT_LE(s.closed_loop.angle_error, 2.0 * M_PI / 180.0);
+  EXPECT_LE(s.closed_loop.max_tracking_error, 0.01);
+  EXPECT_TRUE(s.accepted) << reason;
+}
+
+TEST_F(PlanReplayTest, VerdictFlipsWhenTheGoalMoves) {
+  const TrackingController controller(*model_, plan_->q0);
+  Plan moved = *plan_;
+  ReplayResult r = replayPlan(planner_->simulator(), moved, &controller, {});
+  ASSERT_TRUE(acceptReplay(moved, r, {}));
+  moved.goal.x += 0.03;
+  r = replayPlan(planner_->simulator(), moved, &controller, {});
+  std::string reason;
+  EXPECT_FALSE(acceptReplay(moved, r, {}, &reason));
+  EXPECT_NE(reason.find("position error"), std::string::npos) << reason;
+  moved = *plan_;
+  moved.goal.phi += 5.0 * M_PI / 180.0;
+  r = replayPlan(planner_->simulator(), moved, &controller, {});
+  EXPECT_FALSE(acceptReplay(moved, r, {}, &reason));
+  EXPECT_NE(reason.find("angle error"), std::string::npos) << reason;
+  // A planned phase sequence the replay does not show is rejected too.
+  moved = *plan_;
+  for (PlanSegment& seg : moved.segments) seg.phase = Phase::kP;
+  EXPECT_FALSE(acceptReplay(moved, r, {}, &reason));
+  EXPECT_NE(reason.find("phases"), std::string::npos) << reason;
+}
+
+TEST(PhaseRuns, ShortRunsDroppedAndNeighboursMerged) {
+  using R = std::vector<std::pair<Phase, double>>;
+  EXPECT_EQ(filterPhaseRuns(R{{Phase::kC, 0.1}, {Phase::kU, 0.005}, {Phase::kC, 0.2}}, 0.02), "C");
+  EXPECT_EQ(filterPhaseRuns(R{{Phase::kC, 0.1}, {Phase::kU, 0.05}, {Phase::kC, 0.2}}, 0.02), "CUC");
+  EXPECT_EQ(filterPhaseRuns(R{{Phase::kP, 0.01}, {Phase::kP, 0.015}, {Phase::kU, 0.3}}, 0.02),
+            "PU");
+  EXPECT_EQ(filterPhaseRuns(R{{Phase::kP, 0.01}, {Phase::kU, 0.015}}, 0.02), "U");
+  EXPECT_EQ(filterPhaseRuns(R{}, 0.02), "");
+}
+
+}  // namespace
+}  // namespace rbsf::planner
