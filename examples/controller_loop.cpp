@@ -37,7 +37,10 @@ using Clock = std::chrono::steady_clock;
 class Pacer {
  public:
   explicit Pacer(bool pace) : pace_(pace), next_(Clock::now()) {}
-  void tickStart() { start_ = Clock::now(); }
+  void tickStart() {
+    start_ = Clock::now();
+    if (pace_) late_ = std::max(late_, std::chrono::duration<double>(start_ - next_).count());
+  }
   /// \brief End of a tick's work: record its cost, then sleep until the next tick.
   void tickEnd() {
     const auto end = Clock::now();
@@ -49,11 +52,12 @@ class Pacer {
   }
   double worst() const { return worst_; }
   long overruns() const { return overruns_; }
+  double worstLateStart() const { return late_; }
 
  private:
   bool pace_;
   Clock::time_point next_, start_;
-  double worst_ = 0.0;
+  double worst_ = 0.0, late_ = 0.0;
   long overruns_ = 0;
 };
 
@@ -178,8 +182,14 @@ int run(int argc, char** argv) {
       "after %.2f s more %.4f m %.3f deg\n",
       pos_err(q_plan_end), ang_err(q_plan_end), pos_err(q_end), ang_err(q_end), settle,
       pos_err(state.q), ang_err(state.q));
-  std::printf("loop       worst tick %.1f us%s, %ld overruns of 1 ms\n", 1e6 * pacer.worst(),
-              no_pace ? " (unpaced)" : "", pacer.overruns());
+  if (no_pace) {
+    std::printf("loop       worst tick %.1f us (unpaced)\n", 1e6 * pacer.worst());
+  } else {
+    std::printf(
+        "loop       worst tick %.1f us; %ld ticks ended after their 1 ms deadline, the "
+        "latest tick started %.2f ms late\n",
+        1e6 * pacer.worst(), pacer.overruns(), 1e3 * pacer.worstLateStart());
+  }
   return 0;
 }
 

@@ -55,12 +55,14 @@ struct PublishedPlan {
                 const TrackingSettings& tracking_settings)
       : id(id_),
         duration(plan.duration()),
+        time_step(plan.time_step),
         q0(plan.q0),
         reference(planner::makeReference(plan)),
         tracking(model, plan.q0, tracking_settings) {}
 
   std::uint64_t id;
   double duration;
+  double time_step;  // h of the plan's simulator: the control period computeTorque assumes
   VecQ q0;
   ReferenceTrajectory reference;
   TrackingController tracking;
@@ -230,6 +232,12 @@ bool ReorientationController::computeTorque(double t, const VecQ& q, const VecQ&
   const PublishedPlan* p = reader.get();
   if (p == nullptr) return false;
   p->reference.sample(t, ref);
+  // The feed-forward of the control period [t, t + h): its midpoint's, so that a segment
+  // starting at t is never missed by rounding of t (as planner::replayPlan does).
+  ReferenceSample mid;  // fixed-capacity vectors: no allocation
+  p->reference.sample(t + 0.5 * p->time_step, mid);
+  ref.tau = mid.tau;
+  ref.phase = mid.phase;
   p->tracking.compute(q, v, ref, tau);
   if (plan_id != nullptr) *plan_id = p->id;
   return true;

@@ -126,8 +126,11 @@ class ReorientationController {
   ///        Lock-free, allocation-free; safe from any thread while planning runs.
   bool sample(double t, ReferenceSample& out, std::uint64_t* plan_id = nullptr) const noexcept;
 
-  /// \brief Tracking input for the measured (q, v) at plan time t: the tracking
-  ///        controller (tracking_controller.h) around the published plan's reference.
+  /// \brief Tracking input for the control period [t, t + h) (h: the plan's time step,
+  ///        1 ms by default) from the measured (q, v) at t: the tracking controller
+  ///        (tracking_controller.h) around q_ref(t), v_ref(t), with the feed-forward tau and
+  ///        phase of the period's midpoint t + h/2 (a segment starting at t is never missed
+  ///        by rounding; planner::replayPlan's closed loop computes the same input).
   ///        Returns false and leaves `tau` untouched when no plan is published. `ref`
   ///        receives the reference used. Lock-free, allocation-free.
   bool computeTorque(double t, const VecQ& q, const VecQ& v, VecU& tau, ReferenceSample& ref,
