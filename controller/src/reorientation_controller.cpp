@@ -7,6 +7,7 @@
 
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/planner/plan_reference.h"
+#include "rbsf/planner/plan_replay.h"
 #include "snapshot_slots.h"
 
 namespace rbsf::controller {
@@ -83,7 +84,6 @@ struct ReorientationController::Impl {
   detail::SnapshotSlots<PublishedPlan> slots;
   std::atomic<ControllerStatus> status{ControllerStatus::kIdle};
   std::atomic<PlanOutcome> outcome{PlanOutcome::kNone};
-  std::atomic<std::uint64_t> published_id{0};
   std::atomic<bool> cancel{false};
   std::uint64_t next_id = 1;  // worker only (one at a time)
 
@@ -98,7 +98,6 @@ void ReorientationController::Impl::finish(PlanOutcome how, std::string message,
   if (publish_it) {
     id = next_id++;
     slots.publish(std::make_unique<const PublishedPlan>(id, model, plan, tracking));
-    published_id.store(id);
   }
   {
     const std::lock_guard<std::mutex> lock(mutex);
@@ -115,7 +114,7 @@ void ReorientationController::Impl::finish(PlanOutcome how, std::string message,
 void ReorientationController::Impl::run(ReorientationRequest request) {
   double best = 0.0;
   try {
-    planner::PlannerSettings settings = std::move(request.planner);
+    planner::PlannerSettings settings = request.planner;
     settings.cancel = &cancel;
     settings.progress = std::move(request.progress);
     planner::ReorientationPlanner search(model, std::move(settings));
@@ -152,8 +151,21 @@ void ReorientationController::Impl::run(ReorientationRequest request) {
         return;
       }
       if (refined.success) {
-        plan = std::move(refined.plan);
-        how = PlanOutcome::kOptimized;
+        // The acceptance rule of plan-reorientation (plan_replay.h): the closed-loop replay
+        // with this controller's tracking gains must reach the goal in the planned phases.
+        const Simulator simulator(model, request.planner.simulator);
+        planner::ReplaySettings replay;
+        replay.position_tolerance = request.planner.position_tolerance;
+        replay.angle_tolerance = request.planner.angle_tolerance;
+        replay.tracking = tracking;
+        std::string why;
+        refined.plan.replay = planner::verifyPlan(simulator, refined.plan, replay, &why);
+        if (refined.plan.replay.accepted) {
+          plan = std::move(refined.plan);
+          how = PlanOutcome::kOptimized;
+        } else {
+          note = "optimised plan rejected: " + why;
+        }
       } else {
         note = "optimisation not used: " + refined.plan.optimization.status + " " +
                refined.plan.optimization.message;
@@ -253,7 +265,8 @@ bool ReorientationController::publishedPlan(double& duration, VecQ& q0) const no
 }
 
 std::uint64_t ReorientationController::planId() const noexcept {
-  return impl_->published_id.load();
+  const detail::SnapshotSlots<PublishedPlan>::Reader reader(impl_->slots);
+  return reader.get() == nullptr ? 0 : reader.get()->id;
 }
 
 }  // namespace rbsf::controller

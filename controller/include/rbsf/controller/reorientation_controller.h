@@ -68,8 +68,10 @@ struct ReorientationRequest {
   planner::Problem problem;          ///< start pose (part at rest), start_theta, goal pose
   planner::PlannerSettings planner;  ///< its `cancel` is replaced by the controller's flag
   /// \brief Refine the exact plan with rbsf::trajopt; the refined plan replaces the
-  ///        planner's only when the optimiser succeeds (otherwise the planner's plan is
-  ///        published, outcome kExact, and result().message says why).
+  ///        planner's only when the optimiser succeeds and its closed-loop replay is
+  ///        accepted (planner::verifyPlan with this controller's tracking gains and the
+  ///        request's goal tolerances), as plan-reorientation does; otherwise the
+  ///        planner's plan is published, outcome kExact, and result().message says why.
   bool optimize = false;
   trajopt::OptimizerSettings optimizer;  ///< its `cancel` is replaced as well
   bool accept_approximate = false;       ///< publish a plan that ends away from the goal
