@@ -7,15 +7,15 @@
 /// planner (planner/reorientation_planner.h) and, when asked and built in, the optimiser
 /// (trajopt/plan_optimizer.h), then builds the plan's ReferenceTrajectory
 /// (dynamics/reference_trajectory.h) and publishes it. Any number of threads may call
-/// sample(), computeTorque(), status() and planId() at any time, also while the worker
-/// runs: they take no lock, allocate nothing and free nothing (the published plan is an
-/// immutable snapshot handed over through three slots; see src/snapshot_slots.h). The
-/// other members (plan(), cancel(), wait(), result()) may be called from any non-real-time
-/// thread; cancel() is also async-signal-safe.
+/// sample(), computeTorque(), publishedPlan(), status(), outcome() and planId() at any
+/// time, also while the worker runs: they take no lock, allocate nothing and free nothing (the
+/// published plan is an immutable snapshot handed over through three slots; see
+/// src/snapshot_slots.h). The other members (plan(), cancel(), wait(), result()) may be called from
+/// any non-real-time thread; cancel() is also async-signal-safe.
 ///
 /// Plan time. A plan starts at t = 0 with the part at rest at the problem's start (q0 =
-/// the fingers placed at start_theta) and ends at duration(); sampling clamps t to that
-/// interval (before 0: the start, after the end: the final reference and the last tau).
+/// the fingers placed at start_theta) and ends at its duration (publishedPlan()); sampling clamps t
+/// to that interval (before 0: the start, after the end: the final reference and the last tau).
 ///
 /// Life of a request: status() goes kIdle -> kPlanning -> kReady (a plan was published:
 /// outcome() kExact or kOptimized, or kApproximate when accepted) or kFailed (outcome()
@@ -65,8 +65,18 @@ const char* toString(PlanOutcome outcome);
 
 /// \brief One reorientation request.
 struct ReorientationRequest {
-  planner::Problem problem;          ///< start pose (part at rest), start_theta, goal pose
-  planner::PlannerSettings planner;  ///< its `cancel` is replaced by the controller's flag
+  planner::Problem problem;  ///< start pose (part at rest), start_theta, goal pose
+  /// \brief The planner's settings; its `cancel` is replaced by the controller's flag. The
+  ///        default differs from PlannerSettings' in one place: sample_steps = 1, a plan
+  ///        sample (a reference knot) every simulator step, so that the reference passes
+  ///        through every simulated state; with 10 ms knots the cubic between them strays
+  ///        ~0.3 mm from the simulated path, and the tracking PD reacting to that is enough to
+  ///        tip plans whose sliding phases end near the tolerance (plan_replay_test.cpp).
+  planner::PlannerSettings planner = [] {
+    planner::PlannerSettings s;
+    s.sample_steps = 1;
+    return s;
+  }();
   /// \brief Refine the exact plan with rbsf::trajopt; the refined plan replaces the
   ///        planner's only when the optimiser succeeds and its closed-loop replay is
   ///        accepted (planner::verifyPlan with this controller's tracking gains and the
