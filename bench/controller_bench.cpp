@@ -1,5 +1,6 @@
 // The controller facade's real-time path: sample() and computeTorque() on a published
-// plan (the default cell's 15 degree turn), alone and while a planning request runs on
+// plan (the default cell's 15 degree turn, a knot every 1 ms step), at scattered times and
+// at 1 ms steps as a loop samples, alone and while a planning request runs on
 // the worker thread; ReferenceTrajectory::sample() alone for the cost of publication.
 // Run: build/bench/rbsf_controller_bench --benchmark_repetitions=10
 #include <benchmark/benchmark.h>
@@ -55,6 +56,23 @@ void BM_ControllerSample(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ControllerSample);
+
+/// As a 1 kHz loop samples: t advancing by 1 ms through the plan, then again from 0.
+void BM_ControllerSampleSequential(benchmark::State& state) {
+  ReorientationController& c = readyController();
+  double duration = 0.0;
+  VecQ q0;
+  c.publishedPlan(duration, q0);
+  ReferenceSample ref;
+  c.sample(0.0, ref);
+  const long period = std::lround(duration / 1e-3) + 1;
+  long k = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(c.sample(1e-3 * static_cast<double>(k++ % period), ref));
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK(BM_ControllerSampleSequential);
 
 void BM_ControllerComputeTorque(benchmark::State& state) {
   ReorientationController& c = readyController();
