@@ -1,14 +1,19 @@
 // One step of the hybrid simulator with every contact touching: the part held at rest on
 // m = 3 and m = 6 fingers (phase C, every contact sticking, the indeterminate case of
 // paper 2.2), and the part sliding frictionlessly on m = 3 fingers (phase U).
+// Also the 1 ms control loop's other two calls: sampling a reference of an optimised
+// plan's size (101 knots, 100 tau ramps) and the tracking controller.
 // Run: build/bench/rbsf_simulator_bench --benchmark_repetitions=10
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <memory>
 
 #include "rbsf/dynamics/holding.h"
 #include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/reference_trajectory.h"
 #include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/tracking_controller.h"
 
 namespace rbsf {
 namespace {
@@ -89,6 +94,53 @@ void BM_SimulatorStepSliding(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SimulatorStepSliding)->Arg(3);
+
+/// A reference the size of an optimised plan: 101 knots and 100 tau ramps over 2 s.
+ReferenceTrajectory benchReference(const VecQ& q0) {
+  ReferenceTrajectory ref;
+  const int n = static_cast<int>(q0.size()), nu = n - 3;
+  for (int k = 0; k <= 100; ++k) {
+    const double t = 0.02 * k;
+    ref.addKnot(t, q0 + VecQ::Constant(n, 0.01 * std::sin(3 * t)),
+                VecQ::Constant(n, 0.03 * std::cos(3 * t)));
+    if (k < 100)
+      ref.addInputPiece(t, 0.02, VecU::Constant(nu, 10.0 * k), VecU::Constant(nu, 10.0 * k + 5),
+                        Phase::kU);
+  }
+  return ref;
+}
+
+void BM_ReferenceSample(benchmark::State& state) {
+  const RbsfModel model(benchCell(3, 0.5));
+  const ReferenceTrajectory ref =
+      benchReference(restingConfiguration(model, Pose{0.1, 0.40, 0.0}, 0.0));
+  ReferenceSample sample;
+  double t = 0.0;
+  for (auto _ : state) {
+    t = t >= 2.0 ? 0.0 : t + 1e-3;  // the 1 ms control loop's walk through the plan
+    ref.sample(t, sample);
+    benchmark::DoNotOptimize(sample.q.data());
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK(BM_ReferenceSample);
+
+void BM_TrackingControllerCompute(benchmark::State& state) {
+  const RbsfModel model(benchCell(3, 0.5));
+  const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.40, 0.0}, 0.0);
+  const ReferenceTrajectory ref = benchReference(q0);
+  const TrackingController controller(model, q0);
+  ReferenceSample sample;
+  ref.sample(0.5, sample);
+  const VecQ v = VecQ::Constant(q0.size(), 0.01);
+  VecU tau;
+  for (auto _ : state) {
+    controller.compute(q0, v, sample, tau);
+    benchmark::DoNotOptimize(tau.data());
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK(BM_TrackingControllerCompute);
 
 }  // namespace
 }  // namespace rbsf

@@ -89,6 +89,13 @@ json vec(const auto& v) {
 
 json poseJson(const Pose& p) { return {{"x", p.x}, {"y", p.y}, {"phi", p.phi}}; }
 
+json replayJson(const ReplayResult& r) {
+  return {{"position_error", r.position_error},
+          {"angle_error", r.angle_error},
+          {"min_f_n", r.min_f_n},
+          {"phases", r.phases}};
+}
+
 void requireFiniteJson(const json& j) {
   if (j.is_number_float() && !std::isfinite(j.get<double>()))
     throw std::runtime_error("plan holds a NaN or infinite value; not written");
@@ -129,11 +136,14 @@ V readVec(const json& j, const std::string& what) {
 
 void writePlanJson(const Plan& plan, const std::string& path) {
   json segs = json::array();
-  for (const PlanSegment& s : plan.segments)
-    segs.push_back({{"phase", std::string(toString(s.phase))},
-                    {"duration", s.duration},
-                    {"steps", s.steps},
-                    {"tau", vec(s.tau)}});
+  for (const PlanSegment& s : plan.segments) {
+    json seg = {{"phase", std::string(toString(s.phase))},
+                {"duration", s.duration},
+                {"steps", s.steps},
+                {"tau", vec(s.tau)}};
+    if (s.tau_end.size() > 0) seg["tau_end"] = vec(s.tau_end);
+    segs.push_back(std::move(seg));
+  }
   json samples = json::array();
   for (const PlanSample& s : plan.samples)
     samples.push_back({{"t", s.t},
@@ -158,6 +168,21 @@ void writePlanJson(const Plan& plan, const std::string& path) {
   j["phase_sequence"] = plan.phaseSequence();
   j["segments"] = segs;
   j["samples"] = samples;
+  if (plan.optimization.ran) {
+    const OptimizationSummary& o = plan.optimization;
+    j["optimization"] = {{"status", o.status},
+                         {"iterations", o.iterations},
+                         {"solve_time", o.solve_time},
+                         {"cost_before", o.cost_before},
+                         {"cost_after", o.cost_after}};
+    if (!o.message.empty()) j["optimization"]["message"] = o.message;
+  }
+  if (plan.replay.ran) {
+    json closed = replayJson(plan.replay.closed_loop);
+    closed["max_tracking_error"] = plan.replay.closed_loop.max_tracking_error;
+    j["replay"] = {{"closed_loop", closed}, {"open_loop", replayJson(plan.replay.open_loop)}};
+  }
+  if (plan.replay.ran || plan.optimization.ran) j["accepted"] = plan.replay.accepted;
   requireFiniteJson(j);
   writeAtomically(path, j.dump(1) + "\n");
 }
@@ -219,7 +244,9 @@ Plan readPlanJson(const std::string& path) {
   };
   auto num = [&](const json& o, const char* key, const std::string& where) {
     const json& v = need(o, key, where);
-    if (!v.is_number()) throw InputError(path + ": " + where + key + " must be a number");
+    if (!v.is_number())
+      throw InputError(path + ": " + where + (where.empty() ? "" : ".") + key +
+                       " must be a number");
     return v.get<double>();
   };
   auto pose = [&](const char* key) {
@@ -247,16 +274,21 @@ Plan readPlanJson(const std::string& path) {
     for (const json& s : need(j, "segments", "")) {
       PlanSegment seg;
       seg.phase = parsePhase(need(s, "phase", "segments[]").get<std::string>());
-      seg.duration = num(s, "duration", "segments[].");
+      seg.duration = num(s, "duration", "segments[]");
       seg.steps = need(s, "steps", "segments[]").get<int>();
       seg.tau = readVec<VecU>(need(s, "tau", "segments[]"), path + ": segments[].tau");
       if (seg.tau.size() != n - 3 || seg.steps < 1)
         throw InputError(path + ": segments[] needs steps >= 1 and m + 1 taus");
+      if (s.contains("tau_end")) {
+        seg.tau_end = readVec<VecU>(s.at("tau_end"), path + ": segments[].tau_end");
+        if (seg.tau_end.size() != n - 3)
+          throw InputError(path + ": segments[].tau_end needs m + 1 values");
+      }
       plan.segments.push_back(std::move(seg));
     }
     for (const json& s : need(j, "samples", "")) {
       PlanSample p;
-      p.t = num(s, "t", "samples[].");
+      p.t = num(s, "t", "samples[]");
       p.q = readVec<VecQ>(need(s, "q", "samples[]"), path + ": samples[].q");
       p.v = readVec<VecQ>(need(s, "v", "samples[]"), path + ": samples[].v");
       p.tau = readVec<VecU>(need(s, "tau", "samples[]"), path + ": samples[].tau");
@@ -265,6 +297,45 @@ Plan readPlanJson(const std::string& path) {
       if (p.q.size() != n || p.v.size() != n || p.tau.size() != n - 3 || p.f_n.size() != n - 4)
         throw InputError(path + ": samples[] entries have wrong lengths");
       plan.samples.push_back(std::move(p));
+    }
+    auto text = [&](const json& o, const char* key, const std::string& where) {
+      const json& v = need(o, key, where);
+      if (!v.is_string()) throw InputError(path + ": " + where + "." + key + " must be a string");
+      return v.get<std::string>();
+    };
+    if (j.contains("optimization")) {
+      const json& o = j.at("optimization");
+      OptimizationSummary& s = plan.optimization;
+      s.ran = true;
+      s.status = text(o, "status", "optimization");
+      s.iterations = static_cast<int>(num(o, "iterations", "optimization"));
+      s.solve_time = num(o, "solve_time", "optimization");
+      s.cost_before = num(o, "cost_before", "optimization");
+      s.cost_after = num(o, "cost_after", "optimization");
+      if (o.contains("message")) s.message = text(o, "message", "optimization");
+    }
+    if (j.contains("replay")) {
+      const json& r = j.at("replay");
+      auto result = [&](const char* key) {
+        const std::string where = std::string("replay.") + key;
+        const json& o = need(r, key, "replay");
+        ReplayResult x;
+        x.position_error = num(o, "position_error", where);
+        x.angle_error = num(o, "angle_error", where);
+        x.min_f_n = num(o, "min_f_n", where);
+        x.phases = text(o, "phases", where);
+        return x;
+      };
+      plan.replay.ran = true;
+      plan.replay.closed_loop = result("closed_loop");
+      plan.replay.closed_loop.max_tracking_error =
+          num(r.at("closed_loop"), "max_tracking_error", "replay.closed_loop");
+      plan.replay.open_loop = result("open_loop");
+    }
+    if (plan.replay.ran || plan.optimization.ran) {
+      const json& a = need(j, "accepted", "");
+      if (!a.is_boolean()) throw InputError(path + ": accepted must be true or false");
+      plan.replay.accepted = a.get<bool>();
     }
     return plan;
   } catch (const json::exception& e) {

@@ -3,9 +3,15 @@
 // the verdict flips when the goal moves; phase-run filtering.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/planner/goal.h"
 #include "rbsf/planner/plan_replay.h"
@@ -93,6 +99,77 @@ TEST_F(PlanReplayTest, VerdictFlipsWhenTheGoalMoves) {
   for (PlanSegment& seg : moved.segments) seg.phase = Phase::kP;
   EXPECT_FALSE(acceptReplay(moved, r, {}, &reason));
   EXPECT_NE(reason.find("phases"), std::string::npos) << reason;
+}
+
+TEST_F(PlanReplayTest, OptimisationAndReplayKeysRoundTrip) {
+  Plan plan = *plan_;
+  plan.segments[0].tau_end = plan.segments[0].tau * 0.5;
+  plan.optimization = {true, "Solve_Succeeded", 42, 0.25, 123.5, 67.25, "rejected: because"};
+  plan.replay = verifyPlan(planner_->simulator(), plan, {});
+  const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_opt_plan.json";
+  writePlanJson(plan, path);
+  const Plan back = readPlanJson(path);
+  EXPECT_TRUE(back.segments[0].tau_end == plan.segments[0].tau_end);
+  EXPECT_EQ(back.segments[1].tau_end.size(), 0);
+  const OptimizationSummary& o = back.optimization;
+  EXPECT_TRUE(o.ran);
+  EXPECT_EQ(o.status, "Solve_Succeeded");
+  EXPECT_EQ(o.iterations, 42);
+  EXPECT_EQ(o.solve_time, 0.25);
+  EXPECT_EQ(o.cost_before, 123.5);
+  EXPECT_EQ(o.cost_after, 67.25);
+  EXPECT_EQ(o.message, "rejected: because");
+  const ReplaySummary& r = back.replay;
+  EXPECT_TRUE(r.ran);
+  EXPECT_EQ(r.accepted, plan.replay.accepted);
+  EXPECT_EQ(r.closed_loop.position_error, plan.replay.closed_loop.position_error);
+  EXPECT_EQ(r.closed_loop.angle_error, plan.replay.closed_loop.angle_error);
+  EXPECT_EQ(r.closed_loop.min_f_n, plan.replay.closed_loop.min_f_n);
+  EXPECT_EQ(r.closed_loop.phases, plan.replay.closed_loop.phases);
+  EXPECT_EQ(r.closed_loop.max_tracking_error, plan.replay.closed_loop.max_tracking_error);
+  EXPECT_EQ(r.open_loop.position_error, plan.replay.open_loop.position_error);
+  EXPECT_EQ(r.open_loop.phases, plan.replay.open_loop.phases);
+  // Without the optimiser neither key is written, and none comes back.
+  writePlanJson(*plan_, path);
+  EXPECT_FALSE(readPlanJson(path).optimization.ran);
+  EXPECT_FALSE(readPlanJson(path).replay.ran);
+  std::remove(path.c_str());
+}
+
+TEST_F(PlanReplayTest, MalformedOptimisationKeysAreNamed) {
+  Plan plan = *plan_;
+  plan.optimization = {true, "Solve_Succeeded", 42, 0.25, 123.5, 67.25, ""};
+  plan.replay = verifyPlan(planner_->simulator(), plan, {});
+  const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_bad_opt.json";
+  writePlanJson(plan, path);
+  std::ifstream in(path);
+  nlohmann::json j = nlohmann::json::parse(in);
+  in.close();
+  auto expectRefused = [&](const nlohmann::json& bad, const std::string& key) {
+    { std::ofstream(path) << bad.dump(); }
+    try {
+      readPlanJson(path);
+      ADD_FAILURE() << "accepted without " << key;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  nlohmann::json bad = j;
+  bad["optimization"]["iterations"] = "many";
+  expectRefused(bad, "optimization.iterations");
+  bad = j;
+  bad.erase("accepted");
+  expectRefused(bad, "accepted");
+  bad = j;
+  bad["replay"]["closed_loop"].erase("max_tracking_error");
+  expectRefused(bad, "replay.closed_loop.max_tracking_error");
+  bad = j;
+  bad["replay"]["open_loop"]["phases"] = 3;
+  expectRefused(bad, "replay.open_loop.phases");
+  bad = j;
+  bad["segments"][0]["tau_end"] = {1.0};
+  expectRefused(bad, "tau_end");
+  std::remove(path.c_str());
 }
 
 TEST(PhaseRuns, ShortRunsDroppedAndNeighboursMerged) {

@@ -1,9 +1,11 @@
 // plan-reorientation: torques tau(t) that take the part from where it rests to a goal pose
-// (kinodynamic search on OMPL with the hybrid contact simulator as propagator).
+// (kinodynamic search on OMPL with the hybrid contact simulator as propagator), then refined
+// by the trajectory optimiser and verified by replay (refine_plan.h) unless --no-optimize.
 //
-// Exit status: 0 exact solution; 3 time limit without one (best distance printed);
-// 2 bad input (option, value, cell, a start the fingers cannot hold, a goal no finger
-// reaches); 1 internal error.
+// Exit status: 0 exact plan written (optimised and accepted, or --no-optimize); 4 exact plan
+// written but the optimisation failed or was rejected (the planner's plan, marked); 3 time
+// limit without an exact plan (best distance printed, not optimised); 2 bad input (option,
+// value, cell, a start the fingers cannot hold, a goal no finger reaches); 1 internal error.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -15,17 +17,36 @@
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
+#include "refine_plan.h"
 
 namespace rbsf::tools {
 namespace {
 
 constexpr int kExitTimeLimit = 3;
+constexpr int kExitNotOptimised = 4;
 
 struct Options {
   std::string cell, start, goal, start_theta = "0", planner = "KPIECE1", time_limit = "30",
-                                 seed = "1", out, csv;
-  bool quiet = false;
+                                 seed = "1", out, csv, knots = "100", optimize_time_limit = "30",
+                                 optimize_iterations = "500";
+  bool quiet = false, no_optimize = false;
 };
+
+/// One line on the optimisation and one per replay.
+void printRefineSummary(const RefineOutcome& r) {
+  const planner::OptimizationSummary& o = r.plan.optimization;
+  std::printf("optimisation: %s, %d iterations, %.3f s, cost %.6g -> %.6g\n", o.status.c_str(),
+              o.iterations, o.solve_time, o.cost_before, o.cost_after);
+  if (!r.plan.replay.ran) return;
+  const planner::ReplaySummary& s = r.plan.replay;
+  for (const auto& [name, x] :
+       {std::pair{"closed loop", &s.closed_loop}, std::pair{"open loop", &s.open_loop}})
+    std::printf(
+        "replay %s: position error %.4g m, angle error %.4g deg, min f_n %.4g N, "
+        "phases %s\n",
+        name, x->position_error, x->angle_error * 180.0 / M_PI, x->min_f_n, x->phases.c_str());
+  std::printf("optimised plan %s\n", r.accepted ? "accepted" : "rejected");
+}
 
 int run(int argc, char** argv) {
   CLI::App app{
@@ -34,9 +55,15 @@ int run(int argc, char** argv) {
       "Poses: COM x,y [m] and angle (radians, or degrees with a deg suffix).",
       "plan-reorientation"};
   app.footer(
-      "Exit status: 0 exact solution; 3 time limit without one (best distance printed); 2 bad "
-      "input (option, value, file, a start the fingers cannot hold, a goal no finger "
-      "reaches), with one message on stderr; 1 internal error.");
+      "Exact plans are refined by the trajectory optimiser and replayed in the simulator open "
+      "and closed loop (tracking controller); the refined plan is written only when the "
+      "closed-loop replay ends within 1 cm and 2 degrees of the goal with f_n >= 0 and the "
+      "planned phase sequence, else the planner's plan is written marked accepted: false.\n"
+      "Exit status: 0 exact plan written (optimised and accepted, or --no-optimize); 4 exact "
+      "plan written but the optimisation failed or was rejected (reason on stderr); 3 time "
+      "limit without an exact plan (best distance printed; not optimised); 2 bad input "
+      "(option, value, file, a start the fingers cannot hold, a goal no finger reaches), "
+      "with one message on stderr; 1 internal error.");
   Options o;
   app.add_option("--cell", o.cell, "cell YAML file")->required();
   app.add_option("--start", o.start, "start pose x,y,phi (part at rest)")->required();
@@ -48,6 +75,12 @@ int run(int argc, char** argv) {
   app.add_option("--out", o.out, "write the plan as JSON");
   app.add_option("--csv", o.csv, "write the sampled trajectory as CSV");
   app.add_flag("--quiet", o.quiet, "no progress line");
+  app.add_flag("--no-optimize", o.no_optimize, "write the planner's plan without optimising it");
+  app.add_option("--knots", o.knots, "collocation intervals of the optimiser (default 100)");
+  app.add_option("--optimize-time-limit", o.optimize_time_limit,
+                 "optimiser wall-time limit in seconds (default 30)");
+  app.add_option("--optimize-iterations", o.optimize_iterations,
+                 "optimiser iteration limit (default 500)");
   parseCommandLine(app, argc, argv);
 
   planner::PlannerSettings settings;
@@ -58,6 +91,19 @@ int run(int argc, char** argv) {
   if (seed < 1 || seed > 4294967295.0 || seed != std::floor(seed))
     throw InputError("--seed: must be an integer in 1..4294967295 (got " + o.seed + ")");
   settings.seed = static_cast<std::uint32_t>(seed);
+  trajopt::OptimizerSettings opt_settings;
+  const double knots = parseNumber(o.knots, "--knots");
+  if (knots < 2 || knots > 100000 || knots != std::floor(knots))
+    throw InputError("--knots: must be an integer in 2..100000 (got " + o.knots + ")");
+  opt_settings.knots = static_cast<int>(knots);
+  opt_settings.max_solve_time = parseNumber(o.optimize_time_limit, "--optimize-time-limit");
+  if (!(opt_settings.max_solve_time > 0.0))
+    throw InputError("--optimize-time-limit: must be positive (got " + o.optimize_time_limit + ")");
+  const double iterations = parseNumber(o.optimize_iterations, "--optimize-iterations");
+  if (iterations < 1 || iterations > 1e6 || iterations != std::floor(iterations))
+    throw InputError("--optimize-iterations: must be an integer in 1..1000000 (got " +
+                     o.optimize_iterations + ")");
+  opt_settings.max_iterations = static_cast<int>(iterations);
   planner::Problem problem;
   problem.start = parsePose(o.start, "--start");
   problem.goal = parsePose(o.goal, "--goal");
@@ -74,21 +120,38 @@ int run(int argc, char** argv) {
   }
   const RbsfModel model(loadCell(o.cell));
   planner::ReorientationPlanner rp(model, settings);
-  rp.checkProblem(problem);  // bad input before any search
+  const trajopt::PlanOptimizer optimizer(model, opt_settings);  // bad settings: exit 2
+  rp.checkProblem(problem);                                     // bad input before any search
   planner::Plan plan;
   const bool found = rp.solve(problem, plan);
   if (tty) std::fprintf(stderr, "\n");
-  if (found) {
-    if (!o.out.empty()) planner::writePlanJson(plan, o.out);
-    if (!o.csv.empty()) planner::writePlanCsv(plan, o.csv);
-  }
   if (found && plan.status == "exact") {
     std::printf(
         "exact plan: %zu segments, %.3f s of motion, phases %s; planned in %.3f s, %llu "
         "propagations\n",
         plan.segments.size(), plan.duration(), plan.phaseSequence().c_str(), plan.planning_time,
         static_cast<unsigned long long>(plan.propagations));
-    return 0;
+    int status = 0;
+    if (!o.no_optimize) {
+      planner::ReplaySettings replay;  // the planner's goal tolerances
+      replay.position_tolerance = settings.position_tolerance;
+      replay.angle_tolerance = settings.angle_tolerance;
+      RefineOutcome refined = refinePlan(optimizer, rp.simulator(), plan, replay);
+      printRefineSummary(refined);
+      if (!refined.accepted) {
+        std::fprintf(stderr, "plan-reorientation: planner's plan kept: %s\n",
+                     refined.reason.c_str());
+        status = kExitNotOptimised;
+      }
+      plan = std::move(refined.plan);
+    }
+    if (!o.out.empty()) planner::writePlanJson(plan, o.out);
+    if (!o.csv.empty()) planner::writePlanCsv(plan, o.csv);
+    return status;
+  }
+  if (found) {
+    if (!o.out.empty()) planner::writePlanJson(plan, o.out);
+    if (!o.csv.empty()) planner::writePlanCsv(plan, o.csv);
   }
   std::printf(
       "no exact plan within %.3g s: best distance %.3g (tolerance units: 1 = 1 cm or "

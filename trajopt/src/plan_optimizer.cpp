@@ -1,19 +1,177 @@
-// Temporary: the API compiles and links; the NLP follows in the next commits.
 #include "rbsf/trajopt/plan_optimizer.h"
 
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include <IpIpoptApplication.hpp>
+
+#include "ipopt_adapter.h"
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/trajopt/trajectory_problem.h"
 
 namespace rbsf::trajopt {
 
+namespace {
+
+std::string statusName(Ipopt::ApplicationReturnStatus s) {
+  switch (s) {
+    case Ipopt::Solve_Succeeded:
+      return "Solve_Succeeded";
+    case Ipopt::Solved_To_Acceptable_Level:
+      return "Solved_To_Acceptable_Level";
+    case Ipopt::Infeasible_Problem_Detected:
+      return "Infeasible_Problem_Detected";
+    case Ipopt::Search_Direction_Becomes_Too_Small:
+      return "Search_Direction_Becomes_Too_Small";
+    case Ipopt::Diverging_Iterates:
+      return "Diverging_Iterates";
+    case Ipopt::User_Requested_Stop:
+      return "User_Requested_Stop";
+    case Ipopt::Feasible_Point_Found:
+      return "Feasible_Point_Found";
+    case Ipopt::Maximum_Iterations_Exceeded:
+      return "Maximum_Iterations_Exceeded";
+    case Ipopt::Restoration_Failed:
+      return "Restoration_Failed";
+    case Ipopt::Error_In_Step_Computation:
+      return "Error_In_Step_Computation";
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      return "Maximum_CpuTime_Exceeded";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom:
+      return "Not_Enough_Degrees_Of_Freedom";
+    case Ipopt::Invalid_Problem_Definition:
+      return "Invalid_Problem_Definition";
+    case Ipopt::Invalid_Option:
+      return "Invalid_Option";
+    case Ipopt::Invalid_Number_Detected:
+      return "Invalid_Number_Detected";
+    case Ipopt::Unrecoverable_Exception:
+      return "Unrecoverable_Exception";
+    case Ipopt::NonIpopt_Exception_Thrown:
+      return "NonIpopt_Exception_Thrown";
+    case Ipopt::Insufficient_Memory:
+      return "Insufficient_Memory";
+    case Ipopt::Internal_Error:
+      return "Internal_Error";
+  }
+  return "Unknown_Status";
+}
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw InputError("optimizer setting " + what);
+}
+
+void checkPlan(const RbsfModel& model, const planner::Plan& plan) {
+  const int n = model.configDim(), nu = model.controlDim(), m = model.numFingers();
+  auto bad = [](const std::string& what) {
+    throw InputError("plan does not fit the cell: " + what);
+  };
+  if (plan.q0.size() != n)
+    bad("q0 has " + std::to_string(plan.q0.size()) + " entries, expected " + std::to_string(n));
+  if (!(plan.time_step > 0.0)) bad("time_step must be positive");
+  for (std::size_t s = 0; s < plan.segments.size(); ++s)
+    if (plan.segments[s].tau.size() != nu || !(plan.segments[s].duration > 0.0))
+      bad("segments[" + std::to_string(s) + "] has a tau of the wrong size or no duration");
+  if (plan.samples.empty()) bad("it has no samples");
+  for (std::size_t s = 0; s < plan.samples.size(); ++s) {
+    const planner::PlanSample& p = plan.samples[s];
+    if (p.q.size() != n || p.v.size() != n || p.f_n.size() != m)
+      bad("samples[" + std::to_string(s) + "] has vectors of the wrong size");
+  }
+}
+
+}  // namespace
+
 PlanOptimizer::PlanOptimizer(const RbsfModel& model, OptimizerSettings settings)
-    : model_(model), settings_(std::move(settings)) {}
+    : model_(model), settings_(std::move(settings)) {
+  const OptimizerSettings& s = settings_;
+  require(s.knots >= 2, "knots = " + std::to_string(s.knots) + " must be >= 2");
+  require(std::isfinite(s.smoothness_weight) && s.smoothness_weight >= 0.0,
+          "smoothness_weight must be finite and >= 0");
+  require(std::isfinite(s.force_weight) && s.force_weight >= 0.0,
+          "force_weight must be finite and >= 0");
+  require(s.duration_min_scale > 0.0 && s.duration_min_scale <= 1.0,
+          "duration_min_scale must be in (0, 1]");
+  require(std::isfinite(s.duration_max_scale) && s.duration_max_scale >= 1.0,
+          "duration_max_scale must be finite and >= 1");
+  require(s.cone_margin > 0.0 && s.cone_margin <= 1.0, "cone_margin must be in (0, 1]");
+  require(s.max_iterations >= 0, "max_iterations must be >= 0");
+  require(s.tolerance > 0.0, "tolerance must be positive");
+  require(s.max_solve_time > 0.0, "max_solve_time must be positive");
+  require(s.print_level >= 0 && s.print_level <= 12, "print_level must be in [0, 12]");
+}
 
 OptimizedPlan PlanOptimizer::optimize(const planner::Plan& plan) const {
+  checkPlan(model_, plan);
   OptimizedPlan out;
   out.plan = plan;
-  out.plan.optimization.ran = true;
-  out.plan.optimization.status = "Not_Implemented";
-  out.plan.optimization.message = "optimiser not implemented yet (branch opt in progress)";
+  planner::OptimizationSummary& summary = out.plan.optimization;
+  summary = planner::OptimizationSummary{};
+  summary.ran = true;
+  summary.cost_before = planEffort(model_, plan);
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+
+  const TrajectoryProblem problem(model_, plan, settings_);
+  if (!problem.ok()) {
+    summary.status = "Not_Solved";
+    summary.message = "optimisation not attempted: " + problem.why();
+    summary.cost_after = summary.cost_before;
+    summary.solve_time = elapsed();
+    return out;
+  }
+
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  Ipopt::OptionsList& o = *app->Options();
+  o.SetStringValue("sb", "yes");
+  o.SetStringValue("linear_solver", "mumps");
+  o.SetStringValue("hessian_approximation", settings_.exact_hessian ? "exact" : "limited-memory");
+  o.SetIntegerValue("print_level", settings_.print_level);
+  o.SetIntegerValue("max_iter", settings_.max_iterations);
+  o.SetNumericValue("tol", settings_.tolerance);
+  o.SetNumericValue("max_cpu_time", settings_.max_solve_time);
+  if (settings_.derivative_test) {
+    o.SetStringValue("derivative_test", "first-order");
+    o.SetNumericValue("derivative_test_tol", 1e-5);
+    o.SetNumericValue("derivative_test_perturbation", 1e-8);  // Ipopt's default, stated
+    if (!settings_.derivative_test_file.empty()) {
+      o.SetStringValue("output_file", settings_.derivative_test_file);
+      o.SetIntegerValue("file_print_level", 5);
+    }
+  }
+  Ipopt::ApplicationReturnStatus status = app->Initialize();
+  Ipopt::SmartPtr<IpoptAdapter> nlp = new IpoptAdapter(problem, settings_.exact_hessian,
+                                                       settings_.cancel, settings_.max_solve_time);
+  if (status == Ipopt::Solve_Succeeded) status = app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
+  summary.solve_time = elapsed();
+  summary.status = nlp->wallTimeExceeded() ? "Maximum_WallTime_Exceeded" : statusName(status);
+  summary.iterations = nlp->iterations();
+  const bool converged =
+      status == Ipopt::Solve_Succeeded || status == Ipopt::Solved_To_Acceptable_Level;
+  const Eigen::VectorXd& z = nlp->solution();
+  if (!converged || z.size() != problem.size() || !z.allFinite()) {
+    std::ostringstream msg;
+    msg << "Ipopt did not converge (" << summary.status << " after " << summary.iterations
+        << " iterations";
+    if (z.size() == problem.size()) msg << ", constraint violation " << nlp->constraintViolation();
+    msg << "); the planner's plan is kept";
+    summary.message = msg.str();
+    summary.cost_after = summary.cost_before;
+    return out;
+  }
+  planner::OptimizationSummary kept = summary;
+  kept.cost_after = problem.effort(z);
+  out.plan = problem.toPlan(z, plan);
+  out.plan.optimization = kept;
+  const DecisionLayout& dl = problem.layout();
+  for (int k = 0; k < dl.knots(); ++k) {
+    out.f_t.push_back(z.segment(dl.ft(k), dl.fingers()));
+    out.xi.push_back(z.segment(dl.xi(k), dl.fingers()));
+  }
+  out.success = true;
   return out;
 }
 

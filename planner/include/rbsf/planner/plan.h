@@ -13,11 +13,27 @@
 /// | `time_step`     | simulator step h [s]; `steps_per_control` k |
 /// | `start`, `goal` | poses {x, y, phi}; `start_theta` the base angle at the start |
 /// | `q0`            | start configuration (state_layout.h order), at rest |
-/// | `segments[]`    | `phase` ("C", "P" or "U": the phase most steps of the segment took in
-/// simulation), `duration` [s], `steps`, `tau` | | `samples[]`     | every `sample_steps` steps and
-/// at each segment end: `t`, `q`, `v`, `tau` (held over the step that ends here), `f_n` per
-/// contact, `phase` of that step | CSV (writePlanCsv): one row per sample: t, q..., v..., tau...,
-/// f_n..., phase. Files are written to a temporary name and renamed; a plan with a NaN is refused.
+/// | `phase_sequence` | the segments' phases, runs merged (Plan::phaseSequence) |
+/// | `segments[]`    | `phase` ("C", "P" or "U": the phase most steps of the segment |
+/// |                 | took in simulation), `duration` [s], `steps`, `tau`; `tau_end` |
+/// |                 | only for a ramp (optimised plans): tau goes linearly from `tau` |
+/// |                 | to `tau_end` over the segment |
+/// | `samples[]`     | every `sample_steps` steps and at each segment end (optimised |
+/// |                 | plans: the collocation knots): `t`, `q`, `v`, `tau` (held over |
+/// |                 | the step that ends here), `f_n` per contact, `phase` of that step |
+/// | `optimization`  | only when the optimiser ran: `status` (Ipopt's name of its |
+/// |                 | return status), `iterations`, `solve_time` [s], `cost_before`, |
+/// |                 | `cost_after` (objective on the planner's / optimised plan), and |
+/// |                 | `message` (why it failed or was rejected) when not empty |
+/// | `replay`        | only when the plan was replayed (plan_replay.h): `closed_loop` |
+/// |                 | {`position_error` [m], `angle_error` [rad], `min_f_n` [N], |
+/// |                 | `phases`, `max_tracking_error` [rad or m]} and `open_loop` {the |
+/// |                 | same without `max_tracking_error`} |
+/// | `accepted`      | with `optimization` or `replay`: true when the optimised plan |
+/// |                 | passed the replay (plan_replay.h) and is the one in the file |
+///
+/// CSV (writePlanCsv): one row per sample: t, q..., v..., tau..., f_n..., phase.
+/// Files are written to a temporary name and renamed; a plan with a NaN is refused.
 
 #include <cstdint>
 #include <string>
@@ -43,13 +59,13 @@ struct PlanSegment {
 
 /// \brief How the optimiser's solve went (plan file key `optimization`).
 struct OptimizationSummary {
-  bool ran = false;               ///< false: --no-optimize, key not written
-  std::string status;             ///< Ipopt's name of its return status, e.g. "Solve_Succeeded"
+  bool ran = false;    ///< false: --no-optimize, key not written
+  std::string status;  ///< Ipopt's name of its return status, e.g. "Solve_Succeeded"
   int iterations = 0;
-  double solve_time = 0.0;        ///< [s]
-  double cost_before = 0.0;       ///< the objective on the planner's plan
-  double cost_after = 0.0;        ///< and on the optimised one
-  std::string message;            ///< why it failed or was rejected, empty otherwise
+  double solve_time = 0.0;   ///< [s]
+  double cost_before = 0.0;  ///< the objective on the planner's plan
+  double cost_after = 0.0;   ///< and on the optimised one
+  std::string message;       ///< why it failed or was rejected, empty otherwise
 };
 
 /// \brief One replay of a plan in the simulator (plan file key `replay`).

@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <string>
+#include <vector>
 
 #include "rbsf/dynamics/model.h"
 #include "rbsf/planner/plan.h"
@@ -18,15 +19,23 @@ namespace rbsf::trajopt {
 struct OptimizerSettings {
   int knots = 100;                  ///< collocation intervals over the whole plan (>= 2 per phase)
   double smoothness_weight = 0.01;  ///< weight of the integral of tau_dot^T W tau_dot [s^2]
+  /// \brief Weight of the least-norm contact-force term (ContactForceCost) [-].
+  double force_weight = 1e-3;
   double duration_min_scale = 0.5;  ///< each phase's duration within [min, max] x planned
   double duration_max_scale = 2.0;
-  double cone_margin = 0.9;         ///< sticking forces kept within margin * mu_s
-  int max_iterations = 500;         ///< Ipopt max_iter
-  double tolerance = 1e-6;          ///< Ipopt tol
-  double max_solve_time = 30.0;     ///< Ipopt max_wall_time [s]
-  int print_level = 0;              ///< Ipopt print_level (0: silent)
-  bool derivative_test = false;     ///< run Ipopt's first-order derivative checker
-  std::string derivative_test_file; ///< where the checker's output goes (Ipopt output_file)
+  double cone_margin = 0.9;  ///< sticking forces kept within margin * mu_s
+  /// \brief Sliding contacts keep the sign of the plan's slide over each run (xi may not
+  ///        move back), so the replay does not stick or reverse where the plan slides.
+  bool keep_slide_direction = true;
+  /// \brief true: the exact Hessian of the Lagrangian (nested AutoDiff and closed form);
+  ///        false: Ipopt's limited-memory (L-BFGS) approximation.
+  bool exact_hessian = true;
+  int max_iterations = 500;          ///< Ipopt max_iter
+  double tolerance = 1e-6;           ///< Ipopt tol
+  double max_solve_time = 30.0;      ///< Ipopt max_wall_time [s]
+  int print_level = 0;               ///< Ipopt print_level (0: silent)
+  bool derivative_test = false;      ///< run Ipopt's first-order derivative checker
+  std::string derivative_test_file;  ///< where the checker's output goes (Ipopt output_file)
   /// \brief When set and it becomes true, Ipopt stops at its next iteration (status
   ///        "User_Requested_Stop") and the input plan is returned.
   const std::atomic<bool>* cancel = nullptr;
@@ -37,6 +46,9 @@ struct OptimizerSettings {
 struct OptimizedPlan {
   bool success = false;  ///< Ipopt converged (Solve_Succeeded or Solved_To_Acceptable_Level)
   planner::Plan plan;    ///< refined segments (tau ramps, see PlanSegment::tau_end) and samples
+  /// \brief On success, per sample (knot) of `plan`: the tangential contact forces f_t [N]
+  ///        (along t_i, non-zero only where sticking) and the foot-point parameters xi.
+  std::vector<VecC> f_t, xi;
 };
 
 /// \brief Direct-collocation refinement of plans for one cell.

@@ -1,0 +1,101 @@
+// Optimiser benchmark (a program, not a timed test): the default cell's 30, 90 and 180
+// degree reorientations, planned with seeds 1..N (KPIECE1), each plan optimised with
+// --knots collocation intervals. Per problem: plans found, Ipopt converged, median
+// iterations, median and worst solve time, median effort reduction
+// 1 - integral(tau^T W tau) after / before.
+//   build/bench/rbsf_trajopt_bench [--seeds 5] [--first-seed 1] [--knots 100]
+//                                  [--time-limit 30] [--max-solve-time 30] [--verbose 1]
+//                                  [--only 30|90|180] [--force-weight 1e-3]
+//                                  [--smoothness 0.01] [--slide-direction 1]
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "rbsf/dynamics/cell.h"
+#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/trajopt/plan_optimizer.h"
+
+namespace {
+double median(std::vector<double> x) {
+  if (x.empty()) return NAN;
+  std::sort(x.begin(), x.end());
+  return x[x.size() / 2];
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  int seeds = 5, knots = 100, verbose = 0, first_seed = 1;
+  std::string only;
+  double time_limit = 30.0, max_time = 30.0;
+  for (int k = 1; k + 1 < argc; k += 2) {
+    if (!std::strcmp(argv[k], "--seeds")) seeds = std::atoi(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--knots")) knots = std::atoi(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--time-limit")) time_limit = std::atof(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--verbose")) verbose = std::atoi(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--max-solve-time")) max_time = std::atof(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--first-seed")) first_seed = std::atoi(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--only")) only = argv[k + 1];  // 30, 90 or 180
+  }
+  const rbsf::RbsfModel model(rbsf::loadCell(RBSF_SOURCE_DIR "/cells/default.yaml"));
+  struct Case {
+    const char* label;
+    rbsf::Pose goal;
+  };
+  const double deg = M_PI / 180.0;
+  const Case cases[] = {{"30 deg", {0.1, 0.40, -30 * deg}},
+                        {"90 deg", {-0.1, 0.40, -90 * deg}},
+                        {"180 deg", {-0.1, 0.40, 180 * deg}}};
+  rbsf::trajopt::OptimizerSettings os;
+  os.knots = knots;
+  os.max_solve_time = max_time;
+  for (int k = 1; k + 1 < argc; k += 2) {
+    if (!std::strcmp(argv[k], "--force-weight")) os.force_weight = std::atof(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--smoothness")) os.smoothness_weight = std::atof(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--slide-direction"))
+      os.keep_slide_direction = std::atoi(argv[k + 1]);
+  }
+  const rbsf::trajopt::PlanOptimizer optimizer(model, os);
+  std::printf("%-8s %6s %9s %8s %10s %9s %12s  (knots %d, seeds 1..%d)\n", "problem", "plans",
+              "converged", "iter", "median[s]", "worst[s]", "effort -%", knots, seeds);
+  for (const Case& c : cases) {
+    std::vector<double> times, iters, reductions;
+    int plans = 0, converged = 0;
+    if (!only.empty() && std::string(c.label).rfind(only + " ", 0) != 0) continue;
+    for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
+      rbsf::planner::PlannerSettings ps;
+      ps.seed = static_cast<std::uint32_t>(seed);
+      ps.time_limit = time_limit;
+      rbsf::planner::ReorientationPlanner planner(model, ps);
+      rbsf::planner::Problem p;
+      p.start = {0.1, 0.40, 0.0};
+      p.goal = c.goal;
+      rbsf::planner::Plan plan;
+      if (!planner.solve(p, plan) || plan.status != "exact") continue;
+      ++plans;
+      const rbsf::trajopt::OptimizedPlan out = optimizer.optimize(plan);
+      const rbsf::planner::OptimizationSummary& o = out.plan.optimization;
+      if (verbose)
+        std::printf(
+            "  seed %d: %s (%s, %zu segments) %s, %d iterations, %.3f s, effort %.4f -> "
+            "%.4f %s\n",
+            seed, c.label, plan.phaseSequence().c_str(), plan.segments.size(), o.status.c_str(),
+            o.iterations, o.solve_time, o.cost_before, o.cost_after, o.message.c_str());
+      times.push_back(o.solve_time);
+      iters.push_back(o.iterations);
+      if (out.success) {
+        ++converged;
+        reductions.push_back(100.0 * (1.0 - o.cost_after / o.cost_before));
+      }
+    }
+    std::printf("%-8s %3d/%-3d %5d/%-3d %8.0f %10.3f %9.3f %12.1f\n", c.label, plans, seeds,
+                converged, plans, median(iters), median(times),
+                times.empty() ? NAN : *std::max_element(times.begin(), times.end()),
+                median(reductions));
+    std::fflush(stdout);
+  }
+  return 0;
+}

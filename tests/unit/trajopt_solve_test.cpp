@@ -1,0 +1,198 @@
+// The optimiser on a short real plan (the planner's 15 degree turn): it converges and its
+// solution is physical (dynamics residual small, f_n >= 0, sticking forces in their cones,
+// goal reached at rest, effort lower than the planner's); failures keep the input plan.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rbsf/dynamics/errors.h"
+#include "rbsf/trajopt/plan_optimizer.h"
+#include "rbsf/trajopt/trajectory_problem.h"
+#include "trajopt_support.h"
+
+namespace rbsf::trajopt {
+namespace {
+
+OptimizerSettings testSettings() {
+  OptimizerSettings s;
+  s.knots = 30;
+  return s;
+}
+
+class TrajoptSolve : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const PlanOptimizer opt(test::defaultModel(), testSettings());
+    result_ = new OptimizedPlan(opt.optimize(test::shortPlan()));
+  }
+  static void TearDownTestSuite() { delete result_; }
+  static OptimizedPlan* result_;
+};
+OptimizedPlan* TrajoptSolve::result_ = nullptr;
+
+TEST_F(TrajoptSolve, ConvergesAndLowersTheEffort) {
+  const planner::OptimizationSummary& o = result_->plan.optimization;
+  ASSERT_TRUE(result_->success) << o.status << ": " << o.message;
+  EXPECT_TRUE(o.ran);
+  EXPECT_TRUE(o.status == "Solve_Succeeded" || o.status == "Solved_To_Acceptable_Level");
+  EXPECT_GT(o.iterations, 0);
+  EXPECT_TRUE(o.message.empty());
+  EXPECT_NEAR(o.cost_before, planEffort(test::defaultModel(), test::shortPlan()), 1e-12);
+  EXPECT_LT(o.cost_after, o.cost_before);
+  // The phase sequence is the planner's.
+  EXPECT_EQ(result_->plan.phaseSequence(), test::shortPlan().phaseSequence());
+}
+
+TEST_F(TrajoptSolve, SolutionIsPhysical) {
+  ASSERT_TRUE(result_->success);
+  const RbsfModel& model = test::defaultModel();
+  const planner::Plan& out = result_->plan;
+  const planner::Plan& in = test::shortPlan();
+  const int m = model.numFingers(), n = model.configDim();
+  ASSERT_EQ(out.samples.size(), out.segments.size() + 1);
+  // Start = q0 at rest; end = goal pose at rest.
+  EXPECT_LT((out.samples.front().q - in.q0).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT(out.samples.front().v.cwiseAbs().maxCoeff(), 1e-9);
+  const planner::PlanSample& last = out.samples.back();
+  EXPECT_NEAR(last.q[layout::kX], in.goal.x, 1e-6);
+  EXPECT_NEAR(last.q[layout::kY], in.goal.y, 1e-6);
+  EXPECT_NEAR(std::remainder(last.q[layout::kPhi] - in.goal.phi, 2 * M_PI), 0.0, 1e-6);
+  EXPECT_LT(last.v.cwiseAbs().maxCoeff(), 1e-9);
+  // Durations and tau ramps consistent with the samples.
+  double t = 0.0;
+  for (std::size_t k = 0; k < out.segments.size(); ++k) {
+    EXPECT_NEAR(out.samples[k].t, t, 1e-9);
+    EXPECT_GT(out.segments[k].duration, 0.0);
+    EXPECT_LT((out.segments[k].tau - out.samples[k].tau).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LT((out.segments[k].tau_end - out.samples[k + 1].tau).cwiseAbs().maxCoeff(), 1e-12);
+    t += out.segments[k].duration;
+  }
+  const Cell& cell = model.cell();
+  for (const planner::PlanSample& s : out.samples) {
+    for (int i = 0; i < m; ++i) EXPECT_GE(s.f_n[i], -1e-6);
+    EXPECT_GE(s.q[layout::kTheta], cell.base.theta_min - 1e-6);
+    EXPECT_LE(s.q[layout::kTheta], cell.base.theta_max + 1e-6);
+    for (int i = 0; i < m; ++i) {
+      EXPECT_GE(s.q[layout::stroke(i)], cell.fingers[i].stroke_min - 1e-6);
+      EXPECT_LE(s.q[layout::stroke(i)], cell.fingers[i].stroke_max + 1e-6);
+      EXPECT_LE(std::abs(s.tau[layout::fingerForce(i)]), cell.fingers[i].force_limit + 1e-6);
+    }
+  }
+  for (std::size_t k = 0; k + 1 < out.samples.size(); ++k) {
+    const planner::PlanSample &a = out.samples[k], &b = out.samples[k + 1];
+    const double h = b.t - a.t;
+    const VecQ dq = (b.q - a.q) - 0.5 * h * (a.v + b.v);
+    EXPECT_LT(dq.cwiseAbs().maxCoeff(), 1e-6 * std::max(1.0, h));
+  }
+  (void)n;
+}
+
+TEST_F(TrajoptSolve, DynamicsAndConesHoldByRbsfModel) {
+  // Independent of the NLP's own code: RbsfModel's contact frames (closest points), mass
+  // matrix and bias give the trapezoidal residual of M dv/dt = u + G1 f_n + T f_t - Q.
+  ASSERT_TRUE(result_->success);
+  const RbsfModel& model = test::defaultModel();
+  const planner::Plan& out = result_->plan;
+  const int m = model.numFingers();
+  const TrajectoryProblem p(model, test::shortPlan(), testSettings());
+  const double weight = model.cell().object.mass * model.cell().gravity;
+  const double mu = testSettings().cone_margin * model.cell().friction.mu_static;
+  ModelData data(m);
+  auto rhs = [&](std::size_t k, VecQ& r, MatQQ& M) {
+    const planner::PlanSample& s = out.samples[k];
+    model.updateContacts(s.q, data);
+    VecQ u, Q;
+    model.generalizedInput(s.tau, u);
+    model.bias(s.q, s.v, Q);
+    r = u + data.G1 * s.f_n + data.T * result_->f_t[k] - Q;
+    model.massMatrix(s.q, M);
+    for (int i = 0; i < m; ++i) {
+      const ContactRole role = p.schedule().knotRole(static_cast<int>(k), i);
+      if (role != ContactRole::kOff) {
+        EXPECT_LT(std::abs(data.contacts[i].gap), 1e-6) << "knot " << k << " finger " << i;
+      } else {
+        EXPECT_GT(data.contacts[i].gap, -1e-6) << "knot " << k << " finger " << i;
+        EXPECT_EQ(s.f_n[i], 0.0);
+      }
+      if (role == ContactRole::kStick)
+        EXPECT_LE(std::abs(result_->f_t[k][i]), mu * s.f_n[i] + 1e-6);
+      else
+        EXPECT_EQ(result_->f_t[k][i], 0.0);
+    }
+  };
+  double worst = 0.0;
+  VecQ r0, r1;
+  MatQQ M0, M1;
+  rhs(0, r0, M0);
+  for (std::size_t k = 0; k + 1 < out.samples.size(); ++k) {
+    rhs(k + 1, r1, M1);
+    const double h = out.samples[k + 1].t - out.samples[k].t;
+    const VecQ res =
+        0.5 * (M0 + M1) * (out.samples[k + 1].v - out.samples[k].v) / h - 0.5 * (r0 + r1);
+    worst = std::max(worst, res.cwiseAbs().maxCoeff());
+    r0 = r1;
+    M0 = M1;
+  }
+  EXPECT_LT(worst, 1e-4 * weight);
+}
+
+TEST(TrajoptFailure, IterationLimitKeepsTheInputPlan) {
+  OptimizerSettings s = testSettings();
+  s.max_iterations = 1;
+  const PlanOptimizer opt(test::defaultModel(), s);
+  const OptimizedPlan out = opt.optimize(test::shortPlan());
+  EXPECT_FALSE(out.success);
+  const planner::OptimizationSummary& o = out.plan.optimization;
+  EXPECT_TRUE(o.ran);
+  EXPECT_EQ(o.status, "Maximum_Iterations_Exceeded");
+  EXPECT_NE(o.message.find("planner's plan is kept"), std::string::npos) << o.message;
+  EXPECT_EQ(out.plan.segments.size(), test::shortPlan().segments.size());
+  EXPECT_EQ(out.plan.samples.size(), test::shortPlan().samples.size());
+  EXPECT_TRUE(out.plan.segments.front().tau_end.size() == 0);
+}
+
+TEST(TrajoptFailure, TooFewKnotsForThePhaseRunsIsReported) {
+  OptimizerSettings s;
+  s.knots = 3;  // fewer than 2 per run
+  const PlanOptimizer opt(test::defaultModel(), s);
+  const OptimizedPlan out = opt.optimize(test::shortPlan());
+  EXPECT_FALSE(out.success);
+  EXPECT_EQ(out.plan.optimization.status, "Not_Solved");
+  EXPECT_NE(out.plan.optimization.message.find("knots"), std::string::npos);
+  EXPECT_EQ(out.plan.segments.size(), test::shortPlan().segments.size());
+}
+
+TEST(TrajoptFailure, InfeasibleGoalIsReportedAndThePlanKept) {
+  // A goal 1 m away cannot be reached within the strokes: Ipopt fails, the plan is kept.
+  planner::Plan far = test::shortPlan();
+  far.goal.x += 1.0;
+  OptimizerSettings s = testSettings();
+  s.knots = 20;
+  s.max_iterations = 100;
+  const PlanOptimizer opt(test::defaultModel(), s);
+  const OptimizedPlan out = opt.optimize(far);
+  EXPECT_FALSE(out.success);
+  EXPECT_NE(out.plan.optimization.status, "Solve_Succeeded");
+  EXPECT_NE(out.plan.optimization.message.find("did not converge"), std::string::npos)
+      << out.plan.optimization.message;
+  EXPECT_EQ(out.plan.segments.size(), far.segments.size());
+  EXPECT_TRUE(out.f_t.empty());
+}
+
+TEST(TrajoptFailure, BadSettingsAndMismatchedPlansThrow) {
+  OptimizerSettings s;
+  s.knots = 1;
+  EXPECT_THROW(PlanOptimizer(test::defaultModel(), s), InputError);
+  s = OptimizerSettings{};
+  s.cone_margin = 1.5;
+  EXPECT_THROW(PlanOptimizer(test::defaultModel(), s), InputError);
+  s = OptimizerSettings{};
+  s.duration_max_scale = 0.5;
+  EXPECT_THROW(PlanOptimizer(test::defaultModel(), s), InputError);
+  planner::Plan bad = test::shortPlan();
+  bad.q0 = VecQ::Zero(3);
+  EXPECT_THROW(PlanOptimizer(test::defaultModel()).optimize(bad), InputError);
+}
+
+}  // namespace
+}  // namespace rbsf::trajopt

@@ -1,0 +1,205 @@
+#pragma once
+/// \file
+/// \brief The dynamics of MODEL.md written once for any scalar (double or Eigen's
+///        AutoDiffScalar), so the collocation and contact constraints get exact first
+///        derivatives by forward-mode automatic differentiation. Tested against RbsfModel.
+///
+/// Derivative vectors have a fixed maximum size (kMaxLocal, enough for two knots of a
+/// 12-finger cell plus a duration), so AutoDiff arithmetic never touches the heap.
+
+#include <cmath>
+
+#include <Eigen/Core>
+#include <unsupported/Eigen/AutoDiff>
+
+#include "rbsf/dynamics/model.h"
+#include "rbsf/trajopt/decision_layout.h"
+
+namespace rbsf::trajopt {
+
+/// \brief Largest number of element-local variables: two knot blocks and one duration.
+inline constexpr int kMaxLocal = 2 * (2 * kMaxConfig + (kMaxFingers + 1) + 3 * kMaxFingers) + 1;
+/// \brief Derivative vector of the AutoDiff scalar (stack storage).
+using LocalDerivative = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLocal, 1>;
+/// \brief Forward-mode AutoDiff scalar over an element's local variables.
+using ADScalar = Eigen::AutoDiffScalar<LocalDerivative>;
+/// \brief A configuration-sized vector of scalars S.
+template <class S>
+using ConfigVector = Eigen::Matrix<S, Eigen::Dynamic, 1, 0, 2 * kMaxConfig, 1>;
+template <class S>
+using Vec2T = Eigen::Matrix<S, 2, 1>;
+
+/// \brief Boundary point c(xi) and unit tangent t(xi) in the object frame; the inward
+///        normal is n = S t (MODEL.md).
+template <class S>
+struct FootPoint {
+  Vec2T<S> c, t;
+};
+
+/// \brief Number of derivative levels of a scalar: 0 for double, 1 for AutoDiffScalar
+///        over doubles, 2 for AutoDiff over AutoDiff (Hessians).
+template <class S>
+struct AdOrder {
+  static constexpr int value = 0;
+};
+template <class D>
+struct AdOrder<Eigen::AutoDiffScalar<D>> {
+  static constexpr int value = 1 + AdOrder<typename D::Scalar>::value;
+};
+
+/// \brief The plain value of a (nested) AutoDiff scalar.
+inline double scalarValue(double x) { return x; }
+template <class D>
+double scalarValue(const Eigen::AutoDiffScalar<D>& x) {
+  return scalarValue(x.value());
+}
+
+/// \brief Taylor coefficients of c(xi) and t(xi) at xi0 up to second order:
+///        c ~ c0 + c1 d + c2 d^2 / 2, t ~ t0 + t1 d + t2 d^2 / 2 (d = xi - xi0), with
+///        t' = (c'' - t s') / s and t'' = (c''' - 2 t' s' - t s'') / s, s = |c'|,
+///        s' = t . c'', s'' = t' . c'' + t . c'''. c''' is exact for ellipses and circles
+///        (c''' = -c') and a central difference of c'' otherwise; only Hessians use it.
+struct FootJet {
+  Vec2 c0, c1, c2, t0, t1, t2;
+};
+FootJet footJet(const Shape& shape, double xi, bool second_order);
+
+/// \brief c and t at xi for any scalar: the jet evaluated at d = xi - xi0, exact in value,
+///        first and second derivatives.
+template <class S>
+void footPoint(const Shape& shape, const S& xi, FootPoint<S>& out) {
+  const double x0 = scalarValue(xi);
+  const FootJet j = footJet(shape, x0, AdOrder<S>::value >= 2);
+  if constexpr (AdOrder<S>::value == 0) {
+    out.c = j.c0;
+    out.t = j.t0;
+  } else {
+    const S d = xi - x0;
+    for (int a = 0; a < 2; ++a) {
+      out.c[a] = j.c0[a] + d * (j.c1[a] + 0.5 * j.c2[a] * d);
+      out.t[a] = j.t0[a] + d * (j.t1[a] + 0.5 * j.t2[a] * d);
+    }
+  }
+}
+
+/// \brief Generalized force of contact i on (x, y, phi, theta, l_i), the non-zero entries
+///        of G1_i f_n + T_i f_t (MODEL.md): (f, c_i x f, -(S p_i) . f, -R(theta)(0,1) . f)
+///        with f = f_n n_i + f_t t_i at the foot point xi (world frame) [N, N m].
+template <class S>
+void contactWrench(const RbsfModel& model, int i, const S& phi, const S& theta, const S& l,
+                   const S& fn, const S& ft, const S& xi, S* w) {
+  using std::cos;
+  using std::sin;
+  FootPoint<S> foot;
+  footPoint(model.shape(), xi, foot);
+  const S cp = cos(phi), sp = sin(phi), ct = cos(theta), st = sin(theta);
+  // Force in the object frame (n = S t), then world; c x f is rotation invariant.
+  const S flx = fn * (-foot.t[1]) + ft * foot.t[0];
+  const S fly = fn * foot.t[0] + ft * foot.t[1];
+  const S fx = cp * flx - sp * fly, fy = sp * flx + cp * fly;
+  w[0] = fx;
+  w[1] = fy;
+  w[2] = foot.c[0] * fly - foot.c[1] * flx;
+  const double r = model.cell().fingers[i].r;
+  const S px = ct * r - st * l, py = st * r + ct * l;  // p_i = R(theta)(r_i, l_i)
+  w[3] = -(px * fy - py * fx);                         // -(S p_i) . f
+  w[4] = st * fx - ct * fy;                            // -R(theta)(0, 1) . f
+}
+
+/// \brief Rotation R(a) b for any scalar.
+template <class S>
+Vec2T<S> rotated(const S& ca, const S& sa, const Vec2T<S>& b) {
+  return Vec2T<S>(ca * b[0] - sa * b[1], sa * b[0] + ca * b[1]);
+}
+
+/// \brief out = M(q) a (MODEL.md "Dynamics": blockdiag(m_o, m_o, I_o, M_R)).
+///        q is read from z at offset oq.
+template <class S>
+void massTimes(const Cell& cell, const S* z, int oq, const ConfigVector<S>& a,
+               ConfigVector<S>& out) {
+  const int m = cell.numFingers();
+  out.resize(layout::configDim(m));
+  out[layout::kX] = cell.object.mass * a[layout::kX];
+  out[layout::kY] = cell.object.mass * a[layout::kY];
+  out[layout::kPhi] = cell.object.inertia * a[layout::kPhi];
+  S base = S(cell.base.inertia) * a[layout::kTheta];
+  for (int i = 0; i < m; ++i) {
+    const FingerParams& f = cell.fingers[i];
+    const S L = z[oq + layout::stroke(i)] + f.com_offset;
+    base += (f.inertia + f.mass * (f.r * f.r + L * L)) * a[layout::kTheta] +
+            f.mass * f.r * a[layout::stroke(i)];
+    out[layout::stroke(i)] = f.mass * f.r * a[layout::kTheta] + f.mass * a[layout::stroke(i)];
+  }
+  out[layout::kTheta] = base;
+}
+
+/// \brief r = u(tau) + sum_i (G1_i f_n,i + T_i f_t,i) - Q(q, v): the right-hand side of
+///        M(q) dv/dt = r at one knot whose block starts at z[o] (DecisionLayout local
+///        offsets). Forces act at the foot points x_o + R(phi) c(xi_i); the mechanism
+///        side is -J_i^T f_i with J_i's columns S p_i (theta) and R(theta)(0, 1) (l_i).
+template <class S>
+void knotRhs(const RbsfModel& model, const DecisionLayout& dl, const S* z, int o,
+             ConfigVector<S>& r) {
+  using std::cos;
+  using std::sin;
+  const Cell& cell = model.cell();
+  const int m = model.numFingers();
+  const int n = layout::configDim(m);
+  r.resize(n);
+  const S* q = &z[o];
+  const S* v = &z[o + dl.localV()];
+  const S* tau = &z[o + dl.localTau()];
+  const S* fn = &z[o + dl.localFn()];
+  const S* ft = &z[o + dl.localFt()];
+  const S* xi = &z[o + dl.localXi()];
+  const S ct = cos(q[layout::kTheta]), st = sin(q[layout::kTheta]);
+  const double g0 = cell.gravity;
+  // -Q (MODEL.md "Dynamics") plus u.
+  r[layout::kX] = S(0.0);
+  r[layout::kY] = S(-cell.object.mass * g0);
+  r[layout::kPhi] = S(0.0);
+  const S theta_dot = v[layout::kTheta];
+  S q_theta = S(0.0);
+  for (int i = 0; i < m; ++i) {
+    const FingerParams& f = cell.fingers[i];
+    const S L = q[layout::stroke(i)] + f.com_offset;
+    q_theta +=
+        2.0 * f.mass * L * v[layout::stroke(i)] * theta_dot + f.mass * g0 * (f.r * ct - L * st);
+    r[layout::stroke(i)] = f.mass * L * theta_dot * theta_dot - f.mass * g0 * ct;
+  }
+  r[layout::kTheta] = -q_theta;
+  for (int j = 0; j < layout::controlDim(m); ++j) r[layout::inputToConfig(j)] += tau[j];
+  // Contact forces.
+  S w[5];
+  for (int i = 0; i < m; ++i) {
+    contactWrench<S>(model, i, q[layout::kPhi], q[layout::kTheta], q[layout::stroke(i)], fn[i],
+                     ft[i], xi[i], w);
+    r[layout::kX] += w[0];
+    r[layout::kY] += w[1];
+    r[layout::kPhi] += w[2];
+    r[layout::kTheta] += w[3];
+    r[layout::stroke(i)] += w[4];
+  }
+}
+
+}  // namespace rbsf::trajopt
+
+namespace rbsf::trajopt {
+
+/// \brief First-order AutoDiff over 6 local variables (contact elements).
+using AD6 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 6, 1>>;
+/// \brief Second-order (nested) AutoDiff over 6 local variables: for y of this type,
+///        y.value().derivatives() is the gradient and y.derivatives()[a].derivatives()[b]
+///        the Hessian entry (a, b).
+using AD6x2 = Eigen::AutoDiffScalar<Eigen::Matrix<AD6, 6, 1>>;
+
+/// \brief Seed out[a] as the a-th of 6 independent variables with value x[a].
+inline void seedSecondOrder(const double* x, AD6x2* out) {
+  for (int a = 0; a < 6; ++a) {
+    out[a].value() = AD6(x[a], 6, a);
+    out[a].derivatives().setConstant(AD6(0.0));
+    out[a].derivatives()[a] = AD6(1.0);
+  }
+}
+
+}  // namespace rbsf::trajopt

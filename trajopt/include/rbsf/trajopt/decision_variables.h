@@ -1,0 +1,48 @@
+#pragma once
+/// \file
+/// \brief Bounds and initial guess of the decision vector (layout in decision_layout.h).
+
+#include <Eigen/Core>
+
+#include "rbsf/dynamics/model.h"
+#include "rbsf/planner/plan.h"
+#include "rbsf/trajopt/decision_layout.h"
+#include "rbsf/trajopt/schedule.h"
+
+namespace rbsf::trajopt {
+
+struct OptimizerSettings;
+
+/// \brief The variables' side of the NLP.
+///
+/// Bounds: tau within the cell's torque and force limits; theta and strokes within their
+/// limits; f_n >= 0 where the contact is on at the knot (Schedule::knotRole), 0 where off;
+/// f_t free where it sticks, 0 otherwise (mu_k = 0, MODEL.md); q_0 = plan.q0, v_0 = 0
+/// (start at rest); object pose of q_N = the goal (x, y, phi; phi taken within pi of the
+/// plan's final angle), v_N = 0 (at rest at the end); T_j within
+/// [duration_min_scale, duration_max_scale] x the planned duration of run j.
+///
+/// Initial guess: the planner's trajectory at the knot times (knots spread uniformly over
+/// each run's planned duration): q, v, f_n interpolated linearly between plan samples, tau
+/// the held tau of the segment the knot starts, xi the closest boundary points of the tips
+/// (unwrapped along the plan), f_t = 0; then clipped into the bounds.
+class DecisionVariables {
+ public:
+  DecisionVariables(const RbsfModel& model, const DecisionLayout& layout, const Schedule& schedule,
+                    const planner::Plan& plan, const OptimizerSettings& settings);
+
+  void bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) const;
+  Eigen::VectorXd initialGuess() const;
+  /// \brief Planned time of knot k for the durations in z [s].
+  double knotTime(const Eigen::Ref<const Eigen::VectorXd>& z, int k) const;
+
+ private:
+  const RbsfModel& model_;
+  DecisionLayout layout_;
+  const Schedule& schedule_;
+  const planner::Plan& plan_;
+  double min_scale_, max_scale_;
+  double goal_phi_;
+};
+
+}  // namespace rbsf::trajopt

@@ -1,0 +1,53 @@
+#pragma once
+/// \file
+/// \brief The phase schedule the optimiser keeps: the plan's phase runs, each contact's
+///        role in each run, and how the collocation intervals are spread over the runs.
+
+#include <array>
+#include <vector>
+
+#include "rbsf/dynamics/model.h"
+#include "rbsf/planner/plan.h"
+
+namespace rbsf::trajopt {
+
+/// \brief What a contact does over a whole run.
+enum class ContactRole { kOff, kSlide, kStick };
+
+/// \brief One run of equal phase letters (consecutive plan segments merged).
+struct PhaseRun {
+  Phase phase = Phase::kC;
+  double duration = 0.0;  ///< planned duration [s]
+  double start = 0.0;     ///< planned start time [s]
+  int first_interval = 0;
+  int intervals = 0;
+  std::array<ContactRole, kMaxFingers> role{};
+  /// \brief Sign (+1, -1, 0) of the planned change of xi over the run, per contact.
+  std::array<int, kMaxFingers> slide_direction{};
+};
+
+/// \brief Runs and the interval -> run map.
+struct Schedule {
+  std::vector<PhaseRun> runs;
+  std::vector<int> run_of_interval;  ///< size N
+
+  int intervals() const { return static_cast<int>(run_of_interval.size()); }
+  const PhaseRun& runOf(int interval) const { return runs[run_of_interval[interval]]; }
+  /// \brief Role of contact i on interval k.
+  ContactRole role(int interval, int i) const { return runOf(interval).role[i]; }
+  /// \brief Role of contact i at knot k: the "strongest" of its adjacent intervals
+  ///        (stick > slide > off), so a knot between an on and an off run is on.
+  ContactRole knotRole(int knot, int i) const;
+};
+
+/// \brief Re-simulate the plan's segments (time step plan.time_step, default simulator
+///        settings otherwise), count each contact's mode per run and pick its role by
+///        majority, then make it agree with the run's letter: C at least two sticking
+///        (the most sticking ones), P exactly the one that sticks most, U none sticking
+///        (a sticking majority becomes sliding). Spread `intervals` over the runs in
+///        proportion to their durations, at least 2 each.
+/// \return false (with `why`) when intervals < 2 runs or the plan has no segments.
+bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int intervals,
+                   Schedule& schedule, std::string& why);
+
+}  // namespace rbsf::trajopt

@@ -1,0 +1,209 @@
+#include "rbsf/trajopt/collocation_constraint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace rbsf::trajopt {
+
+using layout::kTheta;
+using layout::stroke;
+
+CollocationConstraint::CollocationConstraint(const RbsfModel& model, const DecisionLayout& layout,
+                                             const Schedule& schedule)
+    : model_(model),
+      layout_(layout),
+      schedule_(schedule),
+      n_(model.configDim()),
+      inv_weight_(1.0 / (model.cell().object.mass * std::max(model.cell().gravity, 1.0))) {
+  for (const PhaseRun& run : schedule_.runs) hbar_.push_back(run.duration / run.intervals);
+  // Structure: AutoDiff at a generic point; an entry is structural when its derivative is
+  // non-zero there (random values make accidental zeros a measure-zero event).
+  const int L = localSize();
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> uni(0.2, 1.0);
+  std::vector<ADScalar> local(L);
+  for (int c = 0; c < L; ++c) local[c] = ADScalar(uni(rng), L, c);
+  ConfigVector<ADScalar> out;
+  defect<ADScalar>(local.data(), 0, out);
+  for (int r = 0; r < 2 * n_; ++r)
+    for (int c = 0; c < L; ++c)
+      if (out[r].derivatives().size() == L && out[r].derivatives()[c] != 0.0)
+        local_pattern_.emplace_back(r, c);
+  const int ks = layout_.knotSize();
+  for (int k = 0; k < layout_.intervals(); ++k) {
+    const int j = schedule_.run_of_interval[k];
+    for (const auto& [r, c] : local_pattern_) {
+      const int col = c < ks ? layout_.knot(k) + c
+                             : (c < 2 * ks ? layout_.knot(k + 1) + c - ks : layout_.duration(j));
+      structure_.emplace_back(2 * n_ * k + r, col);
+    }
+  }
+}
+
+void CollocationConstraint::bounds(VectorRef lower, VectorRef upper) const {
+  lower.setZero();
+  upper.setZero();
+}
+
+void CollocationConstraint::gather(const ConstVectorRef& z, int k, double* local) const {
+  const int ks = layout_.knotSize();
+  for (int c = 0; c < 2 * ks; ++c) local[c] = z[layout_.knot(k) + c];
+  local[2 * ks] = z[layout_.duration(schedule_.run_of_interval[k])];
+}
+
+void CollocationConstraint::values(const ConstVectorRef& z, VectorRef g) const {
+  double local[kMaxLocal];
+  ConfigVector<double> out;
+  for (int k = 0; k < layout_.intervals(); ++k) {
+    gather(z, k, local);
+    defect<double>(local, k, out);
+    g.segment(2 * n_ * k, 2 * n_) = out;
+  }
+}
+
+void CollocationConstraint::jacobian(const ConstVectorRef& z, double* values) const {
+  const int L = localSize();
+  double plain[kMaxLocal];
+  local_ad_.resize(L);  // once per solve: L AutoDiff scalars are too big for the stack
+  ConfigVector<ADScalar> out;
+  std::size_t e = 0;
+  for (int k = 0; k < layout_.intervals(); ++k) {
+    gather(z, k, plain);
+    for (int c = 0; c < L; ++c) local_ad_[c] = ADScalar(plain[c], L, c);
+    defect<ADScalar>(local_ad_.data(), k, out);
+    for (const auto& [r, c] : local_pattern_) {
+      const auto& d = out[r].derivatives();
+      values[e++] = d.size() == L ? d[c] : 0.0;
+    }
+  }
+}
+
+std::vector<int> CollocationConstraint::knotVariables(int kk) const {
+  std::vector<int> cols;
+  for (int c = 0; c < layout_.knotSize(); ++c)
+    if (c != layout::kX && c != layout::kY) cols.push_back(layout_.knot(kk) + c);
+  return cols;
+}
+
+void CollocationConstraint::hessianStructure(HessianPattern& p) {
+  const int m = model_.numFingers();
+  hess_slots_.clear();
+  for (int k = 0; k < layout_.intervals(); ++k) {
+    for (int e = 0; e < 2; ++e) {
+      const int kk = k + e, oq = layout_.q(kk), ov = layout_.v(kk);
+      for (int i = 0; i < m; ++i) {  // contact wrenches
+        const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
+                           layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
+        for (int a = 0; a < 6; ++a)
+          for (int b = 0; b <= a; ++b) hess_slots_.push_back(p.slot(c6[a], c6[b]));
+      }
+      hess_slots_.push_back(p.slot(oq + kTheta, oq + kTheta));  // bias Q
+      for (int i = 0; i < m; ++i) {
+        hess_slots_.push_back(p.slot(oq + kTheta, oq + stroke(i)));
+        hess_slots_.push_back(p.slot(oq + stroke(i), ov + stroke(i)));
+        hess_slots_.push_back(p.slot(oq + stroke(i), ov + kTheta));
+        hess_slots_.push_back(p.slot(ov + stroke(i), ov + kTheta));
+      }
+      hess_slots_.push_back(p.slot(ov + kTheta, ov + kTheta));
+      for (int i = 0; i < m; ++i) {  // mass matrix
+        hess_slots_.push_back(p.slot(oq + stroke(i), oq + stroke(i)));
+        hess_slots_.push_back(p.slot(oq + stroke(i), layout_.v(k) + kTheta));
+        hess_slots_.push_back(p.slot(oq + stroke(i), layout_.v(k + 1) + kTheta));
+      }
+      const int T = layout_.duration(schedule_.run_of_interval[k]);
+      for (int c : knotVariables(kk)) hess_slots_.push_back(p.slot(T, c));
+    }
+  }
+}
+
+void CollocationConstraint::knotHessian(const ConstVectorRef& z, int kk, const double* lv,
+                                        double scale, const int*& slot, double* values,
+                                        Eigen::VectorXd& grad) const {
+  const Cell& cell = model_.cell();
+  const int m = model_.numFingers(), oq = layout_.q(kk), ov = layout_.v(kk);
+  const int o = layout_.knot(kk);
+  grad.setZero(layout_.knotSize());
+  // Contact wrenches: lambda_v^T (G1_i f_n + T_i f_t) by nested AutoDiff.
+  for (int i = 0; i < m; ++i) {
+    const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
+                       layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
+    double x[6];
+    for (int a = 0; a < 6; ++a) x[a] = z[c6[a]];
+    AD6x2 v[6], w[5];
+    seedSecondOrder(x, v);
+    contactWrench<AD6x2>(model_, i, v[0], v[1], v[2], v[3], v[4], v[5], w);
+    const AD6x2 phi = lv[layout::kX] * w[0] + lv[layout::kY] * w[1] + lv[layout::kPhi] * w[2] +
+                      lv[kTheta] * w[3] + lv[stroke(i)] * w[4];
+    for (int a = 0; a < 6; ++a) {
+      grad[c6[a] - o] += phi.value().derivatives()[a];
+      for (int b = 0; b <= a; ++b) values[*slot++] += scale * phi.derivatives()[a].derivatives()[b];
+    }
+  }
+  // Bias: P = lambda_v^T Q (MODEL.md "Dynamics"); r contains -Q.
+  const double g0 = cell.gravity, th = z[oq + kTheta], thd = z[ov + kTheta];
+  const double ct = std::cos(th), st = std::sin(th), lt = lv[kTheta];
+  double P_tt = 0.0, P_tdtd = 0.0;
+  for (int i = 0; i < m; ++i) {
+    const FingerParams& f = cell.fingers[i];
+    P_tt += lt * f.mass * g0 * (-f.r * ct + (z[oq + stroke(i)] + f.com_offset) * st) -
+            lv[stroke(i)] * f.mass * g0 * ct;
+  }
+  values[*slot++] -= scale * P_tt;
+  double dP_t = 0.0, dP_td = 0.0;
+  for (int i = 0; i < m; ++i) {
+    const FingerParams& f = cell.fingers[i];
+    const double L = z[oq + stroke(i)] + f.com_offset, ld = z[ov + stroke(i)], li = lv[stroke(i)];
+    values[*slot++] -= scale * (-lt * f.mass * g0 * ct);
+    values[*slot++] -= scale * (2.0 * lt * f.mass * thd);
+    values[*slot++] -= scale * (2.0 * lt * f.mass * ld - 2.0 * li * f.mass * thd);
+    values[*slot++] -= scale * (2.0 * lt * f.mass * L);
+    P_tdtd -= 2.0 * li * f.mass * L;
+    dP_t += lt * f.mass * g0 * (-f.r * st - L * ct) - li * f.mass * g0 * st;
+    dP_td += 2.0 * lt * f.mass * L * ld - 2.0 * li * f.mass * L * thd;
+    grad[stroke(i)] -= lt * (2.0 * f.mass * ld * thd - f.mass * g0 * st) - li * f.mass * thd * thd;
+    grad[layout_.localV() + stroke(i)] -= 2.0 * lt * f.mass * L * thd;
+  }
+  values[*slot++] -= scale * P_tdtd;
+  grad[kTheta] -= dP_t;
+  grad[layout_.localV() + kTheta] -= dP_td;
+  for (int j = 0; j < layout::controlDim(m); ++j)
+    grad[layout_.localTau() + j] += lv[layout::inputToConfig(j)];
+}
+
+void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* lambda,
+                                       double* values) const {
+  const Cell& cell = model_.cell();
+  const int m = model_.numFingers();
+  const int* slot = hess_slots_.data();
+  Eigen::VectorXd grad;
+  for (int k = 0; k < layout_.intervals(); ++k) {
+    const int j = schedule_.run_of_interval[k];
+    const int N = schedule_.runs[j].intervals;
+    const double inv_hbar = 1.0 / hbar_[j];
+    const double h = z[layout_.duration(j)] / N;
+    const double* lq = lambda + 2 * n_ * k;
+    double lv[kMaxConfig];  // D_v's multipliers with its weight scaling folded in
+    for (int a = 0; a < n_; ++a) lv[a] = lq[n_ + a] * inv_weight_;
+    const double dv_theta = z[layout_.v(k + 1) + kTheta] - z[layout_.v(k) + kTheta];
+    for (int e = 0; e < 2; ++e) {
+      const int kk = k + e, oq = layout_.q(kk);
+      knotHessian(z, kk, lv, -0.5 * h * inv_hbar, slot, values, grad);
+      for (int i = 0; i < m; ++i) {
+        const FingerParams& f = cell.fingers[i];
+        const double L = z[oq + stroke(i)] + f.com_offset;
+        values[*slot++] += inv_hbar * lv[kTheta] * f.mass * dv_theta;
+        values[*slot++] -= inv_hbar * lv[kTheta] * f.mass * L;
+        values[*slot++] += inv_hbar * lv[kTheta] * f.mass * L;
+      }
+      // d^2 / dT dz: -1/(2 N hbar) (grad lambda_v^T r_kk + lambda_q on v_kk).
+      for (int a = 0; a < n_; ++a) grad[layout_.localV() + a] += lq[a];
+      const double cT = -0.5 * inv_hbar / N;
+      for (int c = 0; c < layout_.knotSize(); ++c)
+        if (c != layout::kX && c != layout::kY) values[*slot++] += cT * grad[c];
+    }
+  }
+}
+
+}  // namespace rbsf::trajopt

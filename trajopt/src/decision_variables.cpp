@@ -1,0 +1,115 @@
+#include "rbsf/trajopt/decision_variables.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "rbsf/trajopt/nlp_element.h"
+#include "rbsf/trajopt/plan_optimizer.h"
+
+namespace rbsf::trajopt {
+
+DecisionVariables::DecisionVariables(const RbsfModel& model, const DecisionLayout& layout,
+                                     const Schedule& schedule, const planner::Plan& plan,
+                                     const OptimizerSettings& settings)
+    : model_(model),
+      layout_(layout),
+      schedule_(schedule),
+      plan_(plan),
+      min_scale_(settings.duration_min_scale),
+      max_scale_(settings.duration_max_scale) {
+  const double final_phi = plan.samples.back().q[layout::kPhi];
+  goal_phi_ = final_phi + std::remainder(plan.goal.phi - final_phi, 2.0 * M_PI);
+}
+
+void DecisionVariables::bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) const {
+  const Cell& cell = model_.cell();
+  const int m = model_.numFingers(), n = model_.configDim(), K = layout_.knots();
+  lower = Eigen::VectorXd::Constant(layout_.size(), -kInfinity);
+  upper = Eigen::VectorXd::Constant(layout_.size(), kInfinity);
+  for (int k = 0; k < K; ++k) {
+    lower[layout_.q(k) + layout::kTheta] = cell.base.theta_min;
+    upper[layout_.q(k) + layout::kTheta] = cell.base.theta_max;
+    lower[layout_.tau(k) + layout::kTauTheta] = -cell.base.torque_limit;
+    upper[layout_.tau(k) + layout::kTauTheta] = cell.base.torque_limit;
+    for (int i = 0; i < m; ++i) {
+      const FingerParams& f = cell.fingers[i];
+      lower[layout_.q(k) + layout::stroke(i)] = f.stroke_min;
+      upper[layout_.q(k) + layout::stroke(i)] = f.stroke_max;
+      lower[layout_.tau(k) + layout::fingerForce(i)] = -f.force_limit;
+      upper[layout_.tau(k) + layout::fingerForce(i)] = f.force_limit;
+      const ContactRole role = schedule_.knotRole(k, i);
+      lower[layout_.fn(k) + i] = 0.0;
+      upper[layout_.fn(k) + i] = role == ContactRole::kOff ? 0.0 : kInfinity;
+      if (role != ContactRole::kStick) lower[layout_.ft(k) + i] = upper[layout_.ft(k) + i] = 0.0;
+    }
+  }
+  for (int a = 0; a < n; ++a) {
+    lower[layout_.q(0) + a] = upper[layout_.q(0) + a] = plan_.q0[a];
+    lower[layout_.v(0) + a] = upper[layout_.v(0) + a] = 0.0;
+    lower[layout_.v(K - 1) + a] = upper[layout_.v(K - 1) + a] = 0.0;
+  }
+  const double goal[3] = {plan_.goal.x, plan_.goal.y, goal_phi_};
+  for (int a = 0; a < layout::kObjectDim; ++a)
+    lower[layout_.q(K - 1) + a] = upper[layout_.q(K - 1) + a] = goal[a];
+  for (int j = 0; j < layout_.runs(); ++j) {
+    lower[layout_.duration(j)] = min_scale_ * schedule_.runs[j].duration;
+    upper[layout_.duration(j)] = max_scale_ * schedule_.runs[j].duration;
+  }
+}
+
+double DecisionVariables::knotTime(const Eigen::Ref<const Eigen::VectorXd>& z, int k) const {
+  double t = 0.0;
+  for (int j = 0; j < layout_.runs(); ++j) {
+    const PhaseRun& run = schedule_.runs[j];
+    const double T = z[layout_.duration(j)];
+    if (k <= run.first_interval + run.intervals)
+      return t + T * (k - run.first_interval) / run.intervals;
+    t += T;
+  }
+  return t;
+}
+
+Eigen::VectorXd DecisionVariables::initialGuess() const {
+  const int m = model_.numFingers(), n = model_.configDim(), nu = model_.controlDim();
+  const int K = layout_.knots();
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(layout_.size());
+  for (int j = 0; j < layout_.runs(); ++j) z[layout_.duration(j)] = schedule_.runs[j].duration;
+  const auto& samples = plan_.samples;
+  ModelData data(m);
+  VecC prev_xi(m);
+  std::size_t s = 0;
+  for (int k = 0; k < K; ++k) {
+    const double t = knotTime(z, k);
+    while (s + 2 < samples.size() && samples[s + 1].t <= t) ++s;
+    const planner::PlanSample& a = samples[s];
+    const planner::PlanSample& b = samples[std::min(s + 1, samples.size() - 1)];
+    const double w = b.t > a.t ? std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0) : 0.0;
+    const VecQ q = (1.0 - w) * a.q + w * b.q;
+    z.segment(layout_.q(k), n) = q;
+    z.segment(layout_.v(k), n) = (1.0 - w) * a.v + w * b.v;
+    z.segment(layout_.fn(k), m) = (1.0 - w) * a.f_n + w * b.f_n;
+    // tau: the segment that is held from t on.
+    double seg_start = 0.0;
+    const planner::PlanSegment* seg = &plan_.segments.back();
+    for (const planner::PlanSegment& sg : plan_.segments) {
+      if (t < seg_start + sg.duration - 1e-12) {
+        seg = &sg;
+        break;
+      }
+      seg_start += sg.duration;
+    }
+    z.segment(layout_.tau(k), nu) = seg->tau;
+    model_.updateContacts(q, data);
+    for (int i = 0; i < m; ++i) {
+      double xi = data.contacts[i].xi;
+      if (k > 0) xi = prev_xi[i] + std::remainder(xi - prev_xi[i], 2.0 * M_PI);
+      prev_xi[i] = xi;
+      z[layout_.xi(k) + i] = xi;
+    }
+  }
+  Eigen::VectorXd lower, upper;
+  bounds(lower, upper);
+  return z.cwiseMax(lower).cwiseMin(upper);
+}
+
+}  // namespace rbsf::trajopt
