@@ -79,6 +79,8 @@ int run(int argc, char** argv) {
   app.add_option("--seed", seed_text, "planner seed (default 1)");
   app.add_option("--settle", settle_text, "tracking after the plan's end [s] (default 0)");
   app.add_flag("--optimize", optimize, "refine the plan with rbsf::trajopt");
+  std::string knots_text = "100";
+  app.add_option("--knots", knots_text, "optimiser collocation intervals (default 100)");
   app.add_flag("--no-pace", no_pace, "run the loop as fast as possible");
   parseCommandLine(app, argc, argv);
 
@@ -95,6 +97,10 @@ int run(int argc, char** argv) {
   const double settle = parseNumber(settle_text, "--settle");
   if (!(settle >= 0.0 && settle <= 60.0)) throw InputError("--settle: must be in [0, 60] s");
   request.optimize = optimize;
+  const double knots = parseNumber(knots_text, "--knots");
+  if (!(knots >= 2 && knots <= 2000 && knots == std::floor(knots)))
+    throw InputError("--knots: must be an integer in 2..2000 (got " + knots_text + ")");
+  request.optimizer.knots = static_cast<int>(knots);
 
   controller::ReorientationController ctl(cell);
   const RbsfModel& model = ctl.model();
