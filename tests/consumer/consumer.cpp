@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
     request.planner.seed = 7;
     request.planner.time_limit = 60.0;
     request.optimize = true;
+    request.optimizer.knots = 30;  // small: converges in seconds (as the CLI test's)
+    request.optimizer.max_solve_time = 20.0;
     if (!ctl.plan(request)) return 1;
     long polls = 0;
     while (ctl.status() == rbsf::controller::ControllerStatus::kPlanning) {
