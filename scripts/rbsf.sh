@@ -3,6 +3,8 @@
 #   scripts/rbsf.sh run       install what is missing, build Release, plan the 180 degree turn
 #   scripts/rbsf.sh test      install what is missing, build Release, run the whole test suite
 #   scripts/rbsf.sh sanitize  build with AddressSanitizer + UBSan and run the unit tests
+#   scripts/rbsf.sh tsan      build the controller facade's tests with ThreadSanitizer, run them
+#   scripts/rbsf.sh consumer  install build/ into build/install, build tests/consumer against it, run it
 #   scripts/rbsf.sh fuzz      build the libFuzzer targets (clang, ASan + UBSan) and run each
 #                             for a bounded time (RBSF_FUZZ_SECONDS, default 40); fails on a crash
 set -euo pipefail
@@ -14,6 +16,15 @@ configure_build() {  # $1 build dir, rest: extra cmake args
   local dir="$1"; shift
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
   cmake --build "$dir" -j "$jobs"
+}
+
+consumer() {  # the installed package as an outside project sees it (tests/consumer)
+  rm -rf build/install build/consumer
+  cmake --install build --prefix "$root/build/install" >/dev/null
+  cmake -S tests/consumer -B build/consumer -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
+  cmake --build build/consumer -j "$jobs"
+  ./build/consumer/rbsf_consumer build/install/share/rbsf/cells/default.yaml
 }
 
 cmd="${1:-}"
@@ -38,6 +49,20 @@ case "$cmd" in
     ./scripts/install-deps.sh
     configure_build build
     ctest --test-dir build --output-on-failure -j "$jobs"
+    consumer
+    ;;
+  tsan)
+    # Only what the facade's tests need (dynamics, planner, controller and their test).
+    ./scripts/install-deps.sh
+    cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Release -DRBSF_TSAN=ON \
+      -DRBSF_BUILD_BENCHMARKS=OFF >/dev/null
+    cmake --build build-tsan -j "$jobs" --target rbsf_controller_tests
+    TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$root/scripts/tsan.supp" \
+      ./build-tsan/tests/rbsf_controller_tests
+    ;;
+  consumer)
+    configure_build build
+    consumer
     ;;
   sanitize)
     ./scripts/install-deps.sh
@@ -70,7 +95,7 @@ case "$cmd" in
     done
     ;;
   *)
-    echo "usage: scripts/rbsf.sh run|test|sanitize|fuzz" >&2
+    echo "usage: scripts/rbsf.sh run|test|sanitize|tsan|consumer|fuzz" >&2
     exit 2
     ;;
 esac

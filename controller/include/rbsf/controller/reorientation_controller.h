@@ -1,0 +1,161 @@
+#pragma once
+/// \file
+/// \brief The library's face for a cell controller: load a cell, plan a reorientation on
+///        a worker thread, and sample the plan (or track it) from a real-time loop.
+///
+/// Threads. plan() starts a worker thread and returns at once; the worker runs the
+/// planner (planner/reorientation_planner.h) and, when asked and built in, the optimiser
+/// (trajopt/plan_optimizer.h), then builds the plan's ReferenceTrajectory
+/// (dynamics/reference_trajectory.h) and publishes it. Any number of threads may call
+/// sample(), computeTorque(), publishedPlan(), status(), outcome() and planId() at any
+/// time, also while the worker runs: they take no lock, allocate nothing and free nothing (the
+/// published plan is an immutable snapshot handed over through three slots; see
+/// src/snapshot_slots.h). The other members (plan(), cancel(), wait(), result()) may be called from
+/// any non-real-time thread; cancel() is also async-signal-safe.
+///
+/// Plan time. A plan starts at t = 0 with the part at rest at the problem's start (q0 =
+/// the fingers placed at start_theta) and ends at its duration (publishedPlan()); sampling clamps t
+/// to that interval (before 0: the start, after the end: the final reference and the last tau).
+///
+/// Life of a request: status() goes kIdle -> kPlanning -> kReady (a plan was published:
+/// outcome() kExact or kOptimized, or kApproximate when accepted) or kFailed (outcome()
+/// says why: kCancelled, kApproximate, kNoPath, kInputError, kError; result().message
+/// the details). A failed or cancelled request leaves the previously published plan (if
+/// any) in place: sample() keeps returning it, and planId() tells which plan it is.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/reference_trajectory.h"
+#include "rbsf/dynamics/tracking_controller.h"
+#include "rbsf/planner/plan.h"
+#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/trajopt/plan_optimizer.h"
+
+namespace rbsf::controller {
+
+/// \brief Where the controller's current request stands.
+enum class ControllerStatus : std::uint8_t {
+  kIdle,      ///< no request yet
+  kPlanning,  ///< the worker is planning (or optimising)
+  kReady,     ///< the request's plan is published
+  kFailed     ///< the request ended without publishing; see outcome()
+};
+
+/// \brief How the last finished request ended.
+enum class PlanOutcome : std::uint8_t {
+  kNone,         ///< no request finished yet
+  kExact,        ///< planner reached the goal; its plan is published
+  kOptimized,    ///< and the optimiser refined it; the refined plan is published
+  kApproximate,  ///< the search ended away from the goal (published only when accepted)
+  kNoPath,       ///< the planner produced no path
+  kCancelled,    ///< cancel() stopped the request
+  kInputError,   ///< the problem or settings were refused (message names what)
+  kError         ///< anything else (message)
+};
+
+/// \brief "idle", "planning", "ready", "failed"; "none", "exact", "optimized", ...
+const char* toString(ControllerStatus status);
+const char* toString(PlanOutcome outcome);
+
+/// \brief One reorientation request.
+struct ReorientationRequest {
+  planner::Problem problem;  ///< start pose (part at rest), start_theta, goal pose
+  /// \brief The planner's settings; its `cancel` is replaced by the controller's flag. The
+  ///        default differs from PlannerSettings' in one place: sample_steps = 1, a plan
+  ///        sample (a reference knot) every simulator step, so that the reference passes
+  ///        through every simulated state; with 10 ms knots the cubic between them strays
+  ///        ~0.3 mm from the simulated path, and the tracking PD reacting to that is enough to
+  ///        tip plans whose sliding phases end near the tolerance (plan_replay_test.cpp).
+  planner::PlannerSettings planner = [] {
+    planner::PlannerSettings s;
+    s.sample_steps = 1;
+    return s;
+  }();
+  /// \brief Refine the exact plan with rbsf::trajopt; the refined plan replaces the
+  ///        planner's only when the optimiser succeeds and its closed-loop replay is
+  ///        accepted (planner::verifyPlan with this controller's tracking gains and the
+  ///        request's goal tolerances), as plan-reorientation does; otherwise the
+  ///        planner's plan is published, outcome kExact, and result().message says why.
+  bool optimize = false;
+  trajopt::OptimizerSettings optimizer;  ///< its `cancel` is replaced as well
+  bool accept_approximate = false;       ///< publish a plan that ends away from the goal
+  /// \brief Called on the worker thread about once per second while searching.
+  std::function<void(const planner::Progress&)> progress;
+};
+
+/// \brief What the last finished request produced (copied; not for the real-time loop).
+struct RequestResult {
+  PlanOutcome outcome = PlanOutcome::kNone;
+  std::string message;         ///< why it failed or why optimisation was not used
+  planner::Plan plan;          ///< the plan (published or not); empty when none
+  double best_distance = 0.0;  ///< planner's best goal distance [tolerance units]
+  std::uint64_t plan_id = 0;   ///< id of the published plan, 0 when not published
+};
+
+/// \brief Controller facade for one cell (see the file comment for the threading rules).
+class ReorientationController {
+ public:
+  /// \brief Load the cell file. \throws InputError naming the key or file.
+  explicit ReorientationController(const std::string& cell_file,
+                                   const TrackingSettings& tracking = {});
+  /// \brief Use a cell built in code. \throws InputError when it is invalid.
+  explicit ReorientationController(Cell cell, const TrackingSettings& tracking = {});
+  /// \brief Cancels a running request and joins the worker.
+  ~ReorientationController();
+  ReorientationController(const ReorientationController&) = delete;
+  ReorientationController& operator=(const ReorientationController&) = delete;
+
+  const RbsfModel& model() const;
+
+  /// \brief Start planning `request` on a worker thread and return at once. Returns false
+  ///        (and starts nothing) while a request is still planning: cancel() it and wait().
+  bool plan(const ReorientationRequest& request);
+  /// \brief Ask the running request to stop (the planner at its next check, the optimiser
+  ///        at its next iteration); it ends with outcome kCancelled. No effect when idle.
+  void cancel() noexcept;
+  /// \brief Block until no request is planning (joins the worker).
+  void wait();
+
+  /// \brief Status of the current request. Lock-free.
+  ControllerStatus status() const noexcept;
+  /// \brief Outcome of the last finished request. Lock-free.
+  PlanOutcome outcome() const noexcept;
+  /// \brief Copy of the last finished request's result (takes a lock; not real-time).
+  RequestResult result() const;
+
+  /// \brief Sample the published plan at plan time t [s]: q_ref, v_ref (state_layout.h
+  ///        order: joint references are the theta and stroke entries), feed-forward tau
+  ///        and planned phase (reference_trajectory.h). Returns false and leaves `out`
+  ///        untouched when no plan is published ("no plan"). `plan_id`, when given,
+  ///        receives the id of the plan sampled (ids start at 1 and grow by one per
+  ///        publication), so a loop sees when a new plan replaced the one it executes.
+  ///        Lock-free, allocation-free; safe from any thread while planning runs.
+  bool sample(double t, ReferenceSample& out, std::uint64_t* plan_id = nullptr) const noexcept;
+
+  /// \brief Tracking input for the control period [t, t + h) (h: the plan's time step,
+  ///        1 ms by default) from the measured (q, v) at t: the tracking controller
+  ///        (tracking_controller.h) around q_ref(t), v_ref(t), with the feed-forward tau and
+  ///        phase of the period's midpoint t + h/2 (a segment starting at t is never missed
+  ///        by rounding; planner::replayPlan's closed loop computes the same input).
+  ///        Returns false and leaves `tau` untouched when no plan is published. `ref`
+  ///        receives the reference used. Lock-free, allocation-free.
+  bool computeTorque(double t, const VecQ& q, const VecQ& v, VecU& tau, ReferenceSample& ref,
+                     std::uint64_t* plan_id = nullptr) const noexcept;
+
+  /// \brief Duration [s] and start configuration q0 of the published plan; false when none.
+  bool publishedPlan(double& duration, VecQ& q0) const noexcept;
+  /// \brief Id of the published plan (0: none). Lock-free.
+  std::uint64_t planId() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rbsf::controller

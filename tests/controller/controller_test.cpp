@@ -1,0 +1,255 @@
+// The controller facade (rbsf/controller/reorientation_controller.h): a plan completes and
+// sampling returns its values at its knots; sampling while a new request plans returns
+// the previous plan (or "no plan" before any); cancel ends a request with a cancelled
+// status; progress is reported; snapshots are never torn. Also run under ThreadSanitizer
+// (scripts/rbsf.sh tsan).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "../../controller/src/snapshot_slots.h"
+#include "rbsf/controller/reorientation_controller.h"
+#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/planner/plan_reference.h"
+
+namespace rbsf::controller {
+namespace {
+
+const std::string kDefaultCell = std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml";
+
+/// The planner tests' small problem: a 15 degree turn, solved exactly with seed 7.
+ReorientationRequest smallRequest(std::uint32_t seed = 7, double degrees = -15.0) {
+  ReorientationRequest r;
+  r.problem.start = {0.1, 0.40, 0.0};
+  r.problem.goal = {0.1, 0.40, degrees * M_PI / 180.0};
+  r.planner.seed = seed;
+  r.planner.time_limit = 120.0;  // generous: the search ends at the goal (sanitizers are slow)
+  return r;
+}
+
+/// A request the search cannot finish: tolerances of a micrometre and a microradian.
+ReorientationRequest endlessRequest() {
+  ReorientationRequest r = smallRequest(1, -90.0);
+  r.planner.position_tolerance = 1e-6;
+  r.planner.angle_tolerance = 1e-6;
+  r.planner.time_limit = 300.0;
+  return r;
+}
+
+TEST(ReorientationController, NoPlanBeforeTheFirstRequest) {
+  ReorientationController c(kDefaultCell);
+  EXPECT_EQ(c.status(), ControllerStatus::kIdle);
+  EXPECT_EQ(c.outcome(), PlanOutcome::kNone);
+  EXPECT_EQ(c.planId(), 0u);
+  ReferenceSample out;
+  out.t = -42.0;  // untouched by a "no plan" sample
+  EXPECT_FALSE(c.sample(0.5, out));
+  EXPECT_EQ(out.t, -42.0);
+  const VecQ q = VecQ::Zero(c.model().configDim());
+  VecU tau = VecU::Constant(c.model().controlDim(), 7.0);
+  EXPECT_FALSE(c.computeTorque(0.5, q, q, tau, out));
+  EXPECT_TRUE((tau.array() == 7.0).all());
+}
+
+TEST(ReorientationController, PlanCompletesAndSamplingReturnsItsKnots) {
+  ReorientationController c(kDefaultCell);
+  ASSERT_TRUE(c.plan(smallRequest()));
+  c.wait();
+  ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
+  EXPECT_EQ(c.outcome(), PlanOutcome::kExact);
+  const RequestResult result = c.result();
+  const planner::Plan& plan = result.plan;
+  ASSERT_EQ(plan.status, "exact");
+  EXPECT_EQ(result.plan_id, 1u);
+  EXPECT_EQ(c.planId(), 1u);
+
+  double duration = 0.0;
+  VecQ q0;
+  ASSERT_TRUE(c.publishedPlan(duration, q0));
+  EXPECT_DOUBLE_EQ(duration, plan.duration());
+  EXPECT_EQ(q0, plan.q0);
+
+  // At every knot: the plan's q and v (the reference interpolates through them).
+  ReferenceSample ref;
+  std::uint64_t id = 0;
+  for (const planner::PlanSample& s : plan.samples) {
+    ASSERT_TRUE(c.sample(s.t, ref, &id));
+    EXPECT_EQ(id, 1u);
+    EXPECT_LE((ref.q - s.q).cwiseAbs().maxCoeff(), 1e-9) << "t = " << s.t;
+    EXPECT_LE((ref.v - s.v).cwiseAbs().maxCoeff(), 1e-9) << "t = " << s.t;
+  }
+  // Inside every segment: its held tau and its simulated phase.
+  double t0 = 0.0;
+  for (const planner::PlanSegment& seg : plan.segments) {
+    ASSERT_TRUE(c.sample(t0 + 0.5 * seg.duration, ref));
+    EXPECT_EQ(ref.tau, seg.tau);
+    EXPECT_EQ(ref.phase, seg.phase);
+    t0 += seg.duration;
+  }
+  // The tracking controller on the reference itself adds nothing to the feed-forward
+  // (unless the feed-forward is beyond the limits, which the planner never samples).
+  VecU tau;
+  for (const planner::PlanSample& s : plan.samples) {
+    ASSERT_TRUE(c.computeTorque(s.t, s.q, s.v, tau, ref));
+    EXPECT_LE((tau - ref.tau).cwiseAbs().maxCoeff(), 1e-6 * (1.0 + ref.tau.norm()));
+  }
+  // Off the reference: the plan's own tracking controller (gains at q0) on the reference at
+  // t with the feed-forward of t + h/2, computed here from the plan directly.
+  const ReferenceTrajectory reference = planner::makeReference(plan);
+  const TrackingController tracking(c.model(), plan.q0);
+  ReferenceSample at, mid;
+  VecU want;
+  for (int k = 0; k <= 200; ++k) {
+    const double t = k * plan.duration() / 200;
+    reference.sample(t, at);
+    reference.sample(t + 0.5 * plan.time_step, mid);
+    at.tau = mid.tau;
+    const VecQ q = at.q + VecQ::Constant(at.q.size(), 1e-3 * std::sin(k));
+    const VecQ v = at.v + VecQ::Constant(at.v.size(), 1e-2 * std::cos(k));
+    tracking.compute(q, v, at, want);
+    ASSERT_TRUE(c.computeTorque(t, q, v, tau, ref));
+    EXPECT_EQ(tau, want) << "t = " << t;
+    EXPECT_NE(tau, at.tau) << "the feedback acts off the reference";
+  }
+}
+
+TEST(ReorientationController, SamplingDuringPlanningReturnsThePreviousPlanAndCancelStops) {
+  ReorientationController c(kDefaultCell);
+  ASSERT_TRUE(c.plan(smallRequest()));
+  c.wait();
+  ASSERT_EQ(c.status(), ControllerStatus::kReady);
+  const planner::Plan first = c.result().plan;
+  const ReferenceTrajectory expected = planner::makeReference(first);
+
+  // A request that cannot finish; its progress callback cancels it after one report.
+  std::atomic<int> reports{0};
+  std::atomic<double> elapsed_at_report{0.0};
+  ReorientationRequest endless = endlessRequest();
+  endless.progress = [&](const planner::Progress& p) {
+    elapsed_at_report.store(p.elapsed);
+    if (reports.fetch_add(1) == 0) c.cancel();
+  };
+  ASSERT_TRUE(c.plan(endless));
+  EXPECT_FALSE(c.plan(smallRequest())) << "a second request while one is planning";
+
+  // Sample from this thread while the worker plans: always the first plan, exactly.
+  ReferenceSample got, want;
+  std::uint64_t id = 0;
+  long samples = 0;
+  const double T = first.duration();
+  while (c.status() == ControllerStatus::kPlanning) {
+    const double t = std::fmod(1e-3 * samples, T + 0.2) - 0.1;
+    ASSERT_TRUE(c.sample(t, got, &id));
+    expected.sample(t, want);
+    ASSERT_EQ(id, 1u);
+    ASSERT_EQ(got.q, want.q);
+    ASSERT_EQ(got.tau, want.tau);
+    ++samples;
+  }
+  c.wait();
+  EXPECT_GT(samples, 0);
+  EXPECT_EQ(c.status(), ControllerStatus::kFailed);
+  EXPECT_EQ(c.outcome(), PlanOutcome::kCancelled);
+  EXPECT_GE(reports.load(), 1);
+  EXPECT_GT(elapsed_at_report.load(), 0.5);  // reports come about once per second
+  // Stopped by the cancel, long before its 300 s time limit.
+  const RequestResult cancelled = c.result();
+  EXPECT_LT(cancelled.plan.planning_time, 0.5 * endless.planner.time_limit);
+  EXPECT_EQ(cancelled.plan_id, 0u);
+  EXPECT_EQ(c.planId(), 1u);  // the first plan stays published
+  ASSERT_TRUE(c.sample(0.3, got, &id));
+  EXPECT_EQ(id, 1u);
+
+  // Re-plan: the new plan replaces the first.
+  ASSERT_TRUE(c.plan(smallRequest(3, -20.0)));
+  c.wait();
+  ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
+  EXPECT_EQ(c.planId(), 2u);
+  const planner::Plan second = c.result().plan;
+  const planner::PlanSample& last = second.samples.back();
+  ASSERT_TRUE(c.sample(last.t, got, &id));
+  EXPECT_EQ(id, 2u);
+  EXPECT_LE((got.q - last.q).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+TEST(ReorientationController, CancelFromAnotherThreadAndDestructionWhilePlanning) {
+  ReorientationController c(kDefaultCell);
+  ASSERT_TRUE(c.plan(endlessRequest()));
+  std::thread canceller([&] { c.cancel(); });
+  canceller.join();
+  c.wait();
+  EXPECT_EQ(c.status(), ControllerStatus::kFailed);
+  EXPECT_EQ(c.outcome(), PlanOutcome::kCancelled);
+  EXPECT_EQ(c.planId(), 0u);
+  ReferenceSample out;
+  EXPECT_FALSE(c.sample(0.0, out));
+  // The destructor cancels and joins a running request.
+  auto d = std::make_unique<ReorientationController>(kDefaultCell);
+  ASSERT_TRUE(d->plan(endlessRequest()));
+  d.reset();
+}
+
+TEST(ReorientationController, RefusedProblemFailsWithItsMessage) {
+  ReorientationController c(kDefaultCell);
+  ReorientationRequest r = smallRequest();
+  r.problem.goal = {3.0, 0.40, 0.0};  // no finger reaches a part 3 m away
+  ASSERT_TRUE(c.plan(r));
+  c.wait();
+  EXPECT_EQ(c.status(), ControllerStatus::kFailed);
+  EXPECT_EQ(c.outcome(), PlanOutcome::kInputError);
+  EXPECT_NE(c.result().message.find("goal"), std::string::npos) << c.result().message;
+  r.planner.planner = "NoSuchPlanner";
+  r.problem.goal = smallRequest().problem.goal;
+  ASSERT_TRUE(c.plan(r));
+  c.wait();
+  EXPECT_EQ(c.outcome(), PlanOutcome::kInputError);
+  EXPECT_NE(c.result().message.find("NoSuchPlanner"), std::string::npos) << c.result().message;
+}
+
+// Snapshots published while readers read are never seen half-written, and a reader never
+// sees an older snapshot after a newer one.
+TEST(SnapshotSlots, ReadersSeeWholeSnapshotsInOrder) {
+  struct Snapshot {
+    long id;
+    std::vector<long> values;  // all equal to id
+  };
+  detail::SnapshotSlots<Snapshot> slots;
+  constexpr long kPublications = 2000;
+  std::atomic<bool> done{false};
+  std::atomic<long> torn{0}, backwards{0}, reads{0};
+  auto reader = [&] {
+    long last = 0;
+    while (!done.load()) {
+      const detail::SnapshotSlots<Snapshot>::Reader r(slots);
+      const Snapshot* s = r.get();
+      if (s == nullptr) continue;
+      for (long v : s->values) torn += v != s->id;
+      backwards += s->id < last;
+      last = s->id;
+      ++reads;
+    }
+  };
+  std::thread r1(reader), r2(reader);
+  // Let both readers hold the first snapshot before the publications race them.
+  slots.publish(std::make_unique<const Snapshot>(Snapshot{1, std::vector<long>(64, 1)}));
+  while (reads.load() < 100) std::this_thread::yield();
+  for (long id = 2; id <= kPublications; ++id) {
+    slots.publish(std::make_unique<const Snapshot>(Snapshot{id, std::vector<long>(64, id)}));
+    if (id % 16 == 0) std::this_thread::yield();
+  }
+  done.store(true);
+  r1.join();
+  r2.join();
+  EXPECT_EQ(torn.load(), 0);
+  EXPECT_EQ(backwards.load(), 0);
+  const detail::SnapshotSlots<Snapshot>::Reader r(slots);
+  ASSERT_NE(r.get(), nullptr);
+  EXPECT_EQ(r.get()->id, kPublications);
+}
+
+}  // namespace
+}  // namespace rbsf::controller
