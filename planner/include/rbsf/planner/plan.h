@@ -22,8 +22,8 @@
 /// |                 | plans: the collocation knots): `t`, `q`, `v`, `tau` (held over |
 /// |                 | the step that ends here), `f_n` per contact, `phase` of that step |
 /// | `optimization`  | only when the optimiser ran: `status` (Ipopt's name of its |
-/// |                 | return status), `iterations`, `solve_time` [s], `cost_before`, |
-/// |                 | `cost_after` (objective on the planner's / optimised plan), and |
+/// |                 | return status), `iterations`, `solve_time` [s] (not with --reproducible), `cost_before`, |
+/// |                 | `cost_after` (effort integral of tau^T W tau on the planner's / optimised plan), and |
 /// |                 | `message` (why it failed or was rejected) when not empty |
 /// | `replay`        | only when the plan was replayed (plan_replay.h): `closed_loop` |
 /// |                 | {`position_error` [m], `angle_error` [rad], `min_f_n` [N], |
@@ -64,8 +64,8 @@ struct OptimizationSummary {
   std::string status;  ///< Ipopt's name of its return status, e.g. "Solve_Succeeded"
   int iterations = 0;
   double solve_time = 0.0;   ///< [s]
-  double cost_before = 0.0;  ///< the objective on the planner's plan
-  double cost_after = 0.0;   ///< and on the optimised one
+  double cost_before = 0.0;  ///< effort integral of tau^T W tau on the planner's plan
+  double cost_after = 0.0;   ///< and on the optimised one (trajopt's EffortCost)
   std::string message;       ///< why it failed or was rejected, empty otherwise
 };
 
