@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_support.h"
 #include "rbsf/bench/benchmark_log.h"
 
 namespace {
@@ -23,15 +24,8 @@ namespace fs = std::filesystem;
 const std::string kBench = RBSF_BENCH_EXE;
 const std::string kSuite = std::string(RBSF_SOURCE_DIR) + "/cells/problems/default.yaml";
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path);
-  return std::string(std::istreambuf_iterator<char>(f), {});
-}
+using rbsf::cli_test::Result;
+using rbsf::cli_test::slurp;
 
 std::string scratch(const std::string& name) {
   const std::string dir =
@@ -40,17 +34,8 @@ std::string scratch(const std::string& name) {
   return dir;
 }
 
-Result run(const std::string& args) {
-  static int counter = 0;
-  const std::string base = scratch("io" + std::to_string(counter++));
-  const std::string cmd = kBench + " " + args + " >" + base + ".out 2>" + base + ".err";
-  const int raw = std::system(cmd.c_str());
-  Result r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(base + ".out");
-  r.err = slurp(base + ".err");
-  return r;
-}
+/// rbsf-bench with these arguments (cli_support.h's run).
+Result run(const std::string& args) { return rbsf::cli_test::run(kBench + " " + args); }
 
 std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> out;
