@@ -8,6 +8,9 @@
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/planner/plan_reference.h"
 #include "rbsf/planner/plan_replay.h"
+#ifdef RBSF_CONTROLLER_WITH_TRAJOPT
+#include "rbsf/trajopt/plan_refinement.h"
+#endif
 #include "snapshot_slots.h"
 
 namespace rbsf::controller {
@@ -145,31 +148,21 @@ void ReorientationController::Impl::run(ReorientationRequest request) {
       trajopt::OptimizerSettings opt = request.optimizer;
       opt.cancel = &cancel;
       const trajopt::PlanOptimizer optimizer(model, opt);
-      trajopt::OptimizedPlan refined = optimizer.optimize(plan);
+      // The acceptance rule of plan-reorientation (plan_replay.h): the closed-loop replay
+      // with this controller's tracking gains must reach the goal in the planned phases.
+      const Simulator simulator(model, request.planner.simulator);
+      planner::ReplaySettings replay;
+      replay.position_tolerance = request.planner.position_tolerance;
+      replay.angle_tolerance = request.planner.angle_tolerance;
+      replay.tracking = tracking;
+      trajopt::RefineOutcome refined = trajopt::refinePlan(optimizer, simulator, plan, replay);
       if (cancel.load()) {
         finish(PlanOutcome::kCancelled, "cancelled while optimising", std::move(plan), best, false);
         return;
       }
-      if (refined.success) {
-        // The acceptance rule of plan-reorientation (plan_replay.h): the closed-loop replay
-        // with this controller's tracking gains must reach the goal in the planned phases.
-        const Simulator simulator(model, request.planner.simulator);
-        planner::ReplaySettings replay;
-        replay.position_tolerance = request.planner.position_tolerance;
-        replay.angle_tolerance = request.planner.angle_tolerance;
-        replay.tracking = tracking;
-        std::string why;
-        refined.plan.replay = planner::verifyPlan(simulator, refined.plan, replay, &why);
-        if (refined.plan.replay.accepted) {
-          plan = std::move(refined.plan);
-          how = PlanOutcome::kOptimized;
-        } else {
-          note = "optimised plan rejected: " + why;
-        }
-      } else {
-        note = "optimisation not used: " + refined.plan.optimization.status + " " +
-               refined.plan.optimization.message;
-      }
+      if (refined.accepted) how = PlanOutcome::kOptimized;
+      note = std::move(refined.reason);
+      plan = std::move(refined.plan);
 #else
       note = "optimisation not used: rbsf was built without rbsf::trajopt";
 #endif

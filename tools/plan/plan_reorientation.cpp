@@ -1,6 +1,7 @@
 // plan-reorientation: torques tau(t) that take the part from where it rests to a goal pose
 // (kinodynamic search on OMPL with the hybrid contact simulator as propagator), then refined
-// by the trajectory optimiser and verified by replay (refine_plan.h) unless --no-optimize.
+// by the trajectory optimiser and verified by replay (rbsf/trajopt/plan_refinement.h) unless
+// --no-optimize.
 //
 // Exit status: 0 exact plan written (optimised and accepted, or --no-optimize); 4 exact plan
 // written but the optimisation failed or was rejected (the planner's plan, marked); 3 time
@@ -20,7 +21,7 @@
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
 #include "rbsf/tools/tool_main.h"
-#include "refine_plan.h"
+#include "rbsf/trajopt/plan_refinement.h"
 
 namespace rbsf::tools {
 namespace {
@@ -36,7 +37,7 @@ struct Options {
 };
 
 /// One line on the optimisation and one per replay.
-void printRefineSummary(const RefineOutcome& r) {
+void printRefineSummary(const trajopt::RefineOutcome& r) {
   const planner::OptimizationSummary& o = r.plan.optimization;
   std::printf("optimisation: %s, %d iterations, %.3f s, cost %.6g -> %.6g\n", o.status.c_str(),
               o.iterations, o.solve_time, o.cost_before, o.cost_after);
@@ -158,7 +159,7 @@ int run(int argc, char** argv) {
       planner::ReplaySettings replay;  // the planner's goal tolerances
       replay.position_tolerance = settings.position_tolerance;
       replay.angle_tolerance = settings.angle_tolerance;
-      RefineOutcome refined = refinePlan(optimizer, rp.simulator(), plan, replay);
+      trajopt::RefineOutcome refined = trajopt::refinePlan(optimizer, rp.simulator(), plan, replay);
       if (InterruptFlag::raised()) {  // the optimiser stopped: the planner's plan, marked
         outputs.write(model, refined.plan);
         std::printf("interrupted during the optimisation: planner's plan%s\n",

@@ -1,9 +1,9 @@
-#include "refine_plan.h"
+#include "rbsf/trajopt/plan_refinement.h"
 
 #include <cmath>
 #include <exception>
 
-namespace rbsf::tools {
+namespace rbsf::trajopt {
 
 namespace {
 
@@ -32,10 +32,10 @@ bool finitePlan(const planner::Plan& p) {
 
 }  // namespace
 
-RefineOutcome refinePlan(const trajopt::PlanOptimizer& optimizer, const Simulator& simulator,
+RefineOutcome refinePlan(const PlanOptimizer& optimizer, const Simulator& simulator,
                          const planner::Plan& plan, const planner::ReplaySettings& replay) {
   RefineOutcome out;
-  trajopt::OptimizedPlan opt = optimizer.optimize(plan);
+  OptimizedPlan opt = optimizer.optimize(plan);
   planner::OptimizationSummary summary = opt.plan.optimization;
   summary.ran = true;
   std::string note;
@@ -75,4 +75,4 @@ RefineOutcome refinePlan(const trajopt::PlanOptimizer& optimizer, const Simulato
   return out;
 }
 
-}  // namespace rbsf::tools
+}  // namespace rbsf::trajopt

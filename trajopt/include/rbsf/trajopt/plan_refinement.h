@@ -1,14 +1,15 @@
 #pragma once
 /// \file
-/// \brief The optimisation step of plan-reorientation: optimise an exact plan, replay the
-///        result open and closed loop, and keep it only when the replay accepts it.
+/// \brief The optimisation step of plan-reorientation and of the controller facade: optimise
+///        an exact plan, replay the result open and closed loop, and keep it only when the
+///        replay accepts it.
 
 #include <string>
 
 #include "rbsf/planner/plan_replay.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
-namespace rbsf::tools {
+namespace rbsf::trajopt {
 
 /// \brief The plan to write and the verdict.
 struct RefineOutcome {
@@ -22,7 +23,7 @@ struct RefineOutcome {
 ///        Otherwise: the planner's plan with `optimization` (message = the reason), the
 ///        replay of the optimised plan when it ran, accepted = false. Every number in the
 ///        summaries is finite (a non-finite one is reported in the reason and zeroed).
-RefineOutcome refinePlan(const trajopt::PlanOptimizer& optimizer, const Simulator& simulator,
+RefineOutcome refinePlan(const PlanOptimizer& optimizer, const Simulator& simulator,
                          const planner::Plan& plan, const planner::ReplaySettings& replay);
 
-}  // namespace rbsf::tools
+}  // namespace rbsf::trajopt
