@@ -6,7 +6,10 @@
 #   scripts/rbsf.sh tsan      build the controller facade's tests with ThreadSanitizer, run them
 #   scripts/rbsf.sh consumer  install build/ into build/install, build tests/consumer against it, run it
 #   scripts/rbsf.sh fuzz      build the libFuzzer targets (clang, ASan + UBSan) and run each
-#                             for a bounded time (RBSF_FUZZ_SECONDS, default 40); fails on a crash
+#                             for RBSF_FUZZ_RUNS inputs (default 150000) from the fixed seed
+#                             RBSF_FUZZ_SEED (default 1), capped at RBSF_FUZZ_SECONDS (default
+#                             120); fails on a crash. The fixed seed makes CI's run the one you
+#                             ran; explore with RBSF_FUZZ_SEED=0 (random) and more runs.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"
@@ -77,17 +80,19 @@ case "$cmd" in
       -DCMAKE_CXX_COMPILER=clang++-14 -DRBSF_FUZZ=ON -DRBSF_BUILD_TESTS=OFF \
       -DRBSF_BUILD_BENCHMARKS=OFF >/dev/null
     cmake --build build-fuzz -j "$jobs" --target rbsf_fuzz_cell rbsf_fuzz_plan rbsf_fuzz_cli_values
-    seconds="${RBSF_FUZZ_SECONDS:-40}"
+    seconds="${RBSF_FUZZ_SECONDS:-120}"
+    runs="${RBSF_FUZZ_RUNS:-150000}"
+    seed="${RBSF_FUZZ_SEED:-1}"
     for target in cell plan cli_values; do
       # A scratch copy of the seeds: what the run discovers never lands in the repository.
       corpus="build-fuzz/corpus/$target"
       rm -rf "$corpus" && mkdir -p "$corpus"
       cp tests/fuzz/corpus/"$target"/* "$corpus"/ 2>/dev/null || true
       [ "$target" = cell ] && cp cells/*.yaml "$corpus"/
-      echo "fuzz: rbsf_fuzz_$target for ${seconds} s"
+      echo "fuzz: rbsf_fuzz_$target, ${runs} inputs from seed ${seed} (at most ${seconds} s)"
       ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp" \
-        "build-fuzz/tests/fuzz/rbsf_fuzz_$target" -max_total_time="$seconds" -timeout=10 \
+        "build-fuzz/tests/fuzz/rbsf_fuzz_$target" -runs="$runs" -seed="$seed" -max_total_time="$seconds" -timeout=10 \
         -max_len=16384 -print_final_stats=1 -artifact_prefix="build-fuzz/crash-$target-" \
         "$corpus" 2>"build-fuzz/fuzz-$target.log" ||
         { tail -n 60 "build-fuzz/fuzz-$target.log" >&2; echo "fuzz: rbsf_fuzz_$target failed" >&2; exit 1; }

@@ -124,6 +124,12 @@ void writeAtomically(const std::string& path, const std::string& text) {
 template <class V>
 V readVec(const json& j, const std::string& what) {
   if (!j.is_array()) throw InputError(what + " must be an array of numbers");
+  // The fixed capacity is checked first: Eigen asserts it only in debug builds, so an
+  // over-long array would overrun the inline storage in Release (found by fuzz_plan).
+  constexpr auto capacity = static_cast<size_t>(V::MaxSizeAtCompileTime);
+  if (j.size() > capacity)
+    throw InputError(what + " has " + std::to_string(j.size()) + " entries; at most " +
+                     std::to_string(capacity) + " are supported");
   V v(static_cast<int>(j.size()));
   for (size_t k = 0; k < j.size(); ++k) {
     if (!j[k].is_number() || !std::isfinite(j[k].get<double>()))

@@ -126,7 +126,7 @@ TEST(PlanFile, ReproducibleTextLeavesPlanningTimeOutAndStillParses) {
 TEST(PlanFile, OutOfRangeIntegersAndNonFiniteNumbersAreInputErrors) {
   // Found with tests/fuzz/fuzz_plan.cpp under UBSan: a float or out-of-range value was cast to
   // int / uint32 / uint64 (undefined behaviour), a negative seed wrapped around; a zero step
-  // count or time step was accepted.
+  // count or time step was accepted; an over-long array overran a fixed-capacity vector.
   const nlohmann::json good = nlohmann::json::parse(planner::planJsonText(tinyPlan()));
   ASSERT_NO_THROW(planner::parsePlanJson(good.dump(), "<good>"));
   struct Case {
@@ -146,6 +146,12 @@ TEST(PlanFile, OutOfRangeIntegersAndNonFiniteNumbersAreInputErrors) {
       {with([](auto& j) { j["propagations"] = 1e30; }), "propagations must be an integer"},
       {with([](auto& j) { j["steps_per_control"] = 2.5; }), "steps_per_control must be an integer"},
       {with([](auto& j) { j["time_step"] = 0.0; }), "time_step must be positive"},
+      // Longer than the inline capacity of VecQ / VecC: overran Eigen's storage in Release.
+      {with([](auto& j) { j["samples"][0]["q"] = std::vector<double>(17, 0.0); }),
+       "samples[].q has 17 entries; at most 16"},
+      {with([](auto& j) { j["samples"][0]["f_n"] = std::vector<double>(13, 1.0); }),
+       "samples[].f_n has 13 entries; at most 12"},
+      {with([](auto& j) { j["q0"] = std::vector<double>(40, 0.0); }), "q0 has 40 entries"},
       {[&] {
          std::string t = good.dump();
          const std::string key = "\"goal_distance\":0.0";
