@@ -1,6 +1,7 @@
 #include "rbsf/planner/plan_replay.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -62,9 +63,27 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
   VecU tau;
   ReplayResult r;
   double min_fn = std::numeric_limits<double>::infinity();
+  // Each segment's phase is the majority of its steps' phases (ties to C, then P), the rule
+  // simulateSegments labels the planner's segments by, so a plan's own open-loop replay
+  // reproduces its labels exactly (plannedPhases).
   std::vector<std::pair<Phase, double>> runs;
+  std::array<int, 3> count{};  // C, P, U steps in the current segment
+  std::size_t segment = 0;
+  double segment_end = plan.segments.empty() ? 0.0 : plan.segments.front().duration;
+  auto closeSegment = [&] {  // a segment shorter than a step has no phase of its own
+    if (count[0] + count[1] + count[2] == 0) return;
+    int best = 0;
+    for (int p = 1; p < 3; ++p)
+      if (count[p] > count[best]) best = p;
+    runs.emplace_back(static_cast<Phase>(best), plan.segments[segment].duration);
+    count.fill(0);
+  };
   for (long n = 0; n < steps; ++n) {
     const double t = static_cast<double>(n) * h;
+    while (segment + 1 < plan.segments.size() && t + 0.5 * h >= segment_end) {
+      closeSegment();
+      segment_end += plan.segments[++segment].duration;
+    }
     ref.sample(t, at);
     ref.sample(t + 0.5 * h, mid);
     r.max_tracking_error =
@@ -80,11 +99,9 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
       if (report.contacts[i].mode != ContactMode::kSeparated)
         min_fn = std::min(min_fn, report.contacts[i].f_n);
     const Phase ph = report.phase == Phase::kUnsupported ? Phase::kU : report.phase;
-    if (!runs.empty() && runs.back().first == ph)
-      runs.back().second += h;
-    else
-      runs.emplace_back(ph, h);
+    ++count[static_cast<int>(ph)];
   }
+  if (!plan.segments.empty()) closeSegment();
   ref.sample(static_cast<double>(steps) * h, at);
   r.max_tracking_error =
       std::max(r.max_tracking_error, TrackingController::jointError(state.q, at));

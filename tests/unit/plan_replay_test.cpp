@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "rbsf/dynamics/cell.h"
@@ -66,6 +67,34 @@ TEST_F(PlanReplayTest, OpenLoopRepeatsThePlannersSimulation) {
   EXPECT_GE(r.min_f_n, 0.0);
   // The reference passes through the samples, which are the same simulation.
   EXPECT_LE(r.max_tracking_error, 1e-9);
+  EXPECT_EQ(r.phases, plannedPhases(*plan_, ReplaySettings{}.min_phase_run));
+}
+
+TEST_F(PlanReplayTest, ReplayLabelsSegmentsByTheRuleThePlannerLabelsThemBy) {
+  // With no run dropped (min_run 0) every segment's label counts: the replay's majority
+  // vote per segment must give back exactly the planner's labels, blips inside a segment
+  // included. (Comparing per-step runs with per-segment labels rejected the planner's own
+  // 30 deg plan, seed 1, for phases PUPCUPUCPU != planned PUPUPCUPUCPU.)
+  int mixed = 0;  // segments whose steps were not all of one phase
+  {
+    SimState state(plan_->q0, VecQ::Zero(plan_->q0.size()));
+    SimulatorWorkspace ws(model_->numFingers());
+    StepReport report;
+    for (const PlanSegment& seg : plan_->segments) {
+      std::set<Phase> seen;
+      for (int k = 0; k < seg.steps; ++k) {
+        planner_->simulator().step(state, seg.tau, ws, &report);
+        seen.insert(report.phase == Phase::kUnsupported ? Phase::kU : report.phase);
+      }
+      mixed += seen.size() > 1;
+    }
+  }
+  EXPECT_GT(mixed, 0) << "the plan no longer exercises mixed segments";
+  const ReplayResult r = replayPlan(planner_->simulator(), *plan_, nullptr, {});
+  ReplaySettings all;
+  all.min_phase_run = 0.0;
+  const ReplayResult every = replayPlan(planner_->simulator(), *plan_, nullptr, all);
+  EXPECT_EQ(every.phases, plannedPhases(*plan_, 0.0));
   EXPECT_EQ(r.phases, plannedPhases(*plan_, ReplaySettings{}.min_phase_run));
 }
 

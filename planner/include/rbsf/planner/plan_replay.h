@@ -17,9 +17,12 @@
 ///   angle_error     |wrap(phi - phi_g)| at the end [rad],
 ///   min_f_n         least normal force over all steps of the contacts not separated in
 ///                   that step [N] (0 when no contact ever touches),
-///   phases          per-step phases (an unsupported step counts as U, as in the planner),
-///                   runs shorter than ReplaySettings::min_phase_run dropped, then equal
-///                   neighbours merged (filterPhaseRuns),
+///   phases          each of the plan's segments labelled by the majority of its steps'
+///                   phases (an unsupported step counts as U; ties go to C, then P), the
+///                   rule the planner labels its segments by (simulateSegments); then runs
+///                   shorter than ReplaySettings::min_phase_run dropped and equal
+///                   neighbours merged (filterPhaseRuns). A plan's own open-loop replay
+///                   therefore gives plannedPhases(plan),
 ///   max_tracking_error  max over the steps of max_j |Theta_ref,j - Theta_j| at t_n, in
 ///                   the joints' own units (rad for theta, m for strokes; the numbers are
 ///                   compared as they are: 1 mm and 1 mrad weigh the same).
