@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <set>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/errors.h"
