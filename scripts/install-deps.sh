@@ -9,6 +9,10 @@ packages=(
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
   ompl-demos python3 sqlite3
   coinor-libipopt-dev
+  # An optimised BLAS for MUMPS's dense frontal matrices (it becomes libblas.so.3 through
+  # Debian's alternatives): about a quarter off each Ipopt iteration against the reference
+  # BLAS (BENCHMARKS.md). The serial build: Ipopt solves run one per thread.
+  libopenblas0-serial
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libxml2-utils
