@@ -107,7 +107,12 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
       std::max(r.max_tracking_error, TrackingController::jointError(state.q, at));
   r.position_error =
       std::hypot(state.q[layout::kX] - plan.goal.x, state.q[layout::kY] - plan.goal.y);
-  r.angle_error = std::abs(angleDifference(state.q[layout::kPhi], plan.goal.phi));
+  // The goal angle the plan turns to: phi_g taken within pi of the plan's own final angle,
+  // so "nearest" and "absolute" goals are both meant, and a replay that ends a whole turn
+  // away from where the plan ends is an error of 2 pi, not 0.
+  const double plan_phi = at.q[layout::kPhi];
+  const double goal_phi = plan_phi + angleDifference(plan.goal.phi, plan_phi);
+  r.angle_error = std::abs(state.q[layout::kPhi] - goal_phi);
   r.min_f_n = std::isfinite(min_fn) ? min_fn : 0.0;
   r.phases = filterPhaseRuns(runs, settings.min_phase_run);
   return r;

@@ -382,6 +382,22 @@ TEST(PlanReorientation, TimeLimitWithoutExactPlanExitsThree) {
   EXPECT_NE(r.out.find("best distance"), std::string::npos) << r.out;
 }
 
+TEST(PlanReorientation, AbsoluteGoalAngleIsATotalTurn) {
+  // 345 deg is 15 deg short of a full turn: "nearest" reads it as -15 deg and finds it
+  // within a second; "absolute" asks for 345 deg counter-clockwise, which a one-second
+  // search gets nowhere near (the printed best distance is in tolerance units, 2 deg each).
+  const std::string base = kPlan + " --cell " + kCells +
+                           "default.yaml --quiet --no-optimize --start 0.1,0.40,0 "
+                           "--goal 0.1,0.40,345deg --seed 7 ";
+  const Result nearest = run(base + "--time-limit 60");
+  EXPECT_EQ(nearest.status, 0) << nearest.err;
+  const Result absolute = run(base + "--time-limit 1 --goal-angle absolute");
+  ASSERT_EQ(absolute.status, 3) << absolute.out << absolute.err;
+  const auto at = absolute.out.find("best distance ");
+  ASSERT_NE(at, std::string::npos) << absolute.out;
+  EXPECT_GT(std::stod(absolute.out.substr(at + 14)), 30.0) << absolute.out;
+}
+
 TEST(PlanReorientation, BadInputIsRefusedWithExitTwo) {
   const std::string base = kPlan + " --cell " + kCells + "default.yaml --quiet ";
   struct Case {
@@ -402,6 +418,7 @@ TEST(PlanReorientation, BadInputIsRefusedWithExitTwo) {
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --optimize-time-limit nan",
        "--optimize-time-limit"},
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --optimize-iterations 0", "--optimize-iterations"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --goal-angle round", "--goal-angle"},
   };
   for (const Case& c : cases) {
     const std::string out = writeTemp("never.json", "");

@@ -63,7 +63,8 @@ TEST_F(PlanReplayTest, OpenLoopRepeatsThePlannersSimulation) {
   ASSERT_NEAR(last.t, plan_->duration(), 1e-9);
   EXPECT_EQ(r.position_error,
             std::hypot(last.q[layout::kX] - plan_->goal.x, last.q[layout::kY] - plan_->goal.y));
-  EXPECT_EQ(r.angle_error, std::abs(angleDifference(last.q[layout::kPhi], plan_->goal.phi)));
+  EXPECT_NEAR(r.angle_error, std::abs(angleDifference(last.q[layout::kPhi], plan_->goal.phi)),
+              1e-12);
   EXPECT_GE(r.min_f_n, 0.0);
   // The reference passes through the samples, which are the same simulation.
   EXPECT_LE(r.max_tracking_error, 1e-9);
@@ -128,6 +129,23 @@ TEST_F(PlanReplayTest, VerdictFlipsWhenTheGoalMoves) {
   for (PlanSegment& seg : moved.segments) seg.phase = Phase::kP;
   EXPECT_FALSE(acceptReplay(moved, r, {}, &reason));
   EXPECT_NE(reason.find("phases"), std::string::npos) << reason;
+}
+
+TEST_F(PlanReplayTest, AngleErrorIsMeasuredAgainstTheTurnThePlanMakes) {
+  // The goal angle is read within pi of the plan's final angle, so the same plan aimed at
+  // a goal one turn further ("absolute" 345 deg instead of -15 deg) still verifies, and a
+  // plan whose samples end a whole turn away from where the part really ends does not.
+  Plan turned = *plan_;
+  turned.goal.phi += 2.0 * M_PI;
+  const ReplayResult same = replayPlan(planner_->simulator(), turned, nullptr, {});
+  const ReplayResult base = replayPlan(planner_->simulator(), *plan_, nullptr, {});
+  EXPECT_NEAR(same.angle_error, base.angle_error, 1e-9);
+  Plan lying = *plan_;  // its samples (the reference) claim a full extra turn
+  for (PlanSample& s : lying.samples) s.q[layout::kPhi] += 2.0 * M_PI;
+  lying.goal.phi += 2.0 * M_PI;
+  const ReplayResult r = replayPlan(planner_->simulator(), lying, nullptr, {});
+  EXPECT_NEAR(r.angle_error, 2.0 * M_PI, 0.05);
+  EXPECT_FALSE(acceptReplay(lying, r, {}));
 }
 
 TEST_F(PlanReplayTest, OptimisationAndReplayKeysRoundTrip) {

@@ -32,7 +32,8 @@ constexpr int kExitNotOptimised = 4;
 struct Options {
   std::string cell, start, goal, start_theta = "0", planner = "KPIECE1", time_limit = "30",
                                  seed = "1", out, csv, svg, report, svg_still = "0", knots = "100",
-                                 optimize_time_limit = "30", optimize_iterations = "500";
+                                 optimize_time_limit = "30", optimize_iterations = "500",
+                                 goal_angle = "nearest";
   bool quiet = false, no_optimize = false, reproducible = false;
 };
 
@@ -74,6 +75,10 @@ int run(int argc, char** argv) {
   app.add_option("--cell", o.cell, "cell YAML file")->required();
   app.add_option("--start", o.start, "start pose x,y,phi (part at rest)")->required();
   app.add_option("--goal", o.goal, "goal pose x,y,phi")->required();
+  app.add_option("--goal-angle", o.goal_angle,
+                 "nearest (default): the goal angle modulo 360 deg, reached whichever way is "
+                 "shorter; absolute: the part's total turn from phi = 0, so -270deg asks for "
+                 "three quarters of a clockwise turn");
   app.add_option("--start-theta", o.start_theta, "base angle at the start (default 0)");
   app.add_option("--planner", o.planner, "KPIECE1 (default), RRT, SST, EST or PDST");
   app.add_option("--time-limit", o.time_limit, "seconds (default 30)");
@@ -121,6 +126,9 @@ int run(int argc, char** argv) {
   planner::Problem problem;
   problem.start = parsePose(o.start, "--start");
   problem.goal = parsePose(o.goal, "--goal");
+  if (o.goal_angle != "nearest" && o.goal_angle != "absolute")
+    throw InputError("--goal-angle: must be nearest or absolute (got " + o.goal_angle + ")");
+  problem.absolute_angle = o.goal_angle == "absolute";
   problem.start_theta = parseAngle(o.start_theta, "--start-theta");
 
   const bool tty = !o.quiet && isatty(fileno(stderr));

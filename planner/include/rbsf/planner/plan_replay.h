@@ -14,7 +14,9 @@
 ///
 /// Reported (ReplayResult):
 ///   position_error  |(x, y) - (x_g, y_g)| at the end [m],
-///   angle_error     |wrap(phi - phi_g)| at the end [rad],
+///   angle_error     |phi - phi_g*| at the end [rad], phi_g* the goal angle taken within pi
+///                   of the reference's final angle (the turn the plan makes, "nearest" or
+///                   "absolute"), phi not wrapped: ending a whole turn off counts 2 pi,
 ///   min_f_n         least normal force over all steps of the contacts not separated in
 ///                   that step [N] (0 when no contact ever touches),
 ///   phases          each of the plan's segments labelled by the majority of its steps'
