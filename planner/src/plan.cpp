@@ -184,12 +184,17 @@ std::string planJsonText(const Plan& plan, const PlanFileOptions& options) {
     if (options.wall_clock) j["optimization"]["solve_time"] = o.solve_time;
     if (!o.message.empty()) j["optimization"]["message"] = o.message;
   }
-  if (plan.replay.ran) {
-    json closed = replayJson(plan.replay.closed_loop);
-    closed["max_tracking_error"] = plan.replay.closed_loop.max_tracking_error;
-    j["replay"] = {{"closed_loop", closed}, {"open_loop", replayJson(plan.replay.open_loop)}};
-  }
+  auto summaryJson = [](const ReplaySummary& r) {
+    json closed = replayJson(r.closed_loop);
+    closed["max_tracking_error"] = r.closed_loop.max_tracking_error;
+    return json{{"closed_loop", closed}, {"open_loop", replayJson(r.open_loop)}};
+  };
+  if (plan.replay.ran) j["replay"] = summaryJson(plan.replay);
   if (plan.replay.ran || plan.optimization.ran) j["accepted"] = plan.replay.accepted;
+  if (plan.planner_replay.ran) {
+    j["planner_replay"] = summaryJson(plan.planner_replay);
+    j["planner_replay"]["accepted"] = plan.planner_replay.accepted;
+  }
   requireFiniteJson(j);
   return j.dump(1) + "\n";
 }
@@ -354,11 +359,11 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
       s.cost_after = num(o, "cost_after", "optimization");
       if (o.contains("message")) s.message = text(o, "message", "optimization");
     }
-    if (j.contains("replay")) {
-      const json& r = j.at("replay");
+    auto summary = [&](const char* name) {
+      const json& r = j.at(name);
       auto result = [&](const char* key) {
-        const std::string where = std::string("replay.") + key;
-        const json& o = need(r, key, "replay");
+        const std::string where = std::string(name) + "." + key;
+        const json& o = need(r, key, name);
         ReplayResult x;
         x.position_error = num(o, "position_error", where);
         x.angle_error = num(o, "angle_error", where);
@@ -366,11 +371,21 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
         x.phases = text(o, "phases", where);
         return x;
       };
-      plan.replay.ran = true;
-      plan.replay.closed_loop = result("closed_loop");
-      plan.replay.closed_loop.max_tracking_error =
-          num(r.at("closed_loop"), "max_tracking_error", "replay.closed_loop");
-      plan.replay.open_loop = result("open_loop");
+      ReplaySummary out;
+      out.ran = true;
+      out.closed_loop = result("closed_loop");
+      out.closed_loop.max_tracking_error =
+          num(r.at("closed_loop"), "max_tracking_error", std::string(name) + ".closed_loop");
+      out.open_loop = result("open_loop");
+      return out;
+    };
+    if (j.contains("replay")) plan.replay = summary("replay");
+    if (j.contains("planner_replay")) {
+      plan.planner_replay = summary("planner_replay");
+      const json& a = need(j.at("planner_replay"), "accepted", "planner_replay");
+      if (!a.is_boolean())
+        throw InputError(path + ": planner_replay.accepted must be true or false");
+      plan.planner_replay.accepted = a.get<bool>();
     }
     if (plan.replay.ran || plan.optimization.ran) {
       const json& a = need(j, "accepted", "");

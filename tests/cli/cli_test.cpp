@@ -369,6 +369,17 @@ TEST(PlanReorientation, OptimisesByDefaultAndReportsTheReplay) {
     EXPECT_NE(r.err.find("planner's plan kept"), std::string::npos) << r.err;
     EXPECT_FALSE(o["message"].get<std::string>().empty());
     EXPECT_FALSE(j["segments"][0].contains("tau_end")) << "rejected: the planner's plan";
+    // The plan in the file is verified too. Open loop it repeats the planner's own
+    // simulation, so it ends where the planner's search ended, within the goal tolerance,
+    // through the phases its segments are labelled with.
+    ASSERT_TRUE(j.contains("planner_replay"));
+    const auto& k = j["planner_replay"];
+    EXPECT_LE(k["open_loop"]["position_error"].get<double>(), 0.01);
+    EXPECT_LE(k["open_loop"]["angle_error"].get<double>(), 2.0 * M_PI / 180.0);
+    // Its segments last 20 ms or more, so no run is dropped: the replay shows them all.
+    EXPECT_EQ(k["open_loop"]["phases"], j["phase_sequence"]);
+    EXPECT_TRUE(k["accepted"].is_boolean());
+    EXPECT_NE(r.out.find("planner's plan, replay closed loop"), std::string::npos) << r.out;
   }
 }
 

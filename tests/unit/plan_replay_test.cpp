@@ -153,6 +153,8 @@ TEST_F(PlanReplayTest, OptimisationAndReplayKeysRoundTrip) {
   plan.segments[0].tau_end = plan.segments[0].tau * 0.5;
   plan.optimization = {true, "Solve_Succeeded", 42, 0.25, 123.5, 67.25, "rejected: because"};
   plan.replay = verifyPlan(planner_->simulator(), plan, {});
+  plan.planner_replay = verifyPlan(planner_->simulator(), *plan_, {});
+  plan.planner_replay.closed_loop.phases = "CPU";  // distinct from `replay`'s
   const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_opt_plan.json";
   writePlanJson(plan, path);
   const Plan back = readPlanJson(path);
@@ -176,10 +178,18 @@ TEST_F(PlanReplayTest, OptimisationAndReplayKeysRoundTrip) {
   EXPECT_EQ(r.closed_loop.max_tracking_error, plan.replay.closed_loop.max_tracking_error);
   EXPECT_EQ(r.open_loop.position_error, plan.replay.open_loop.position_error);
   EXPECT_EQ(r.open_loop.phases, plan.replay.open_loop.phases);
+  const ReplaySummary& k = back.planner_replay;
+  EXPECT_TRUE(k.ran);
+  EXPECT_EQ(k.accepted, plan.planner_replay.accepted);
+  EXPECT_EQ(k.closed_loop.phases, "CPU");
+  EXPECT_EQ(k.closed_loop.position_error, plan.planner_replay.closed_loop.position_error);
+  EXPECT_EQ(k.closed_loop.max_tracking_error, plan.planner_replay.closed_loop.max_tracking_error);
+  EXPECT_EQ(k.open_loop.angle_error, plan.planner_replay.open_loop.angle_error);
   // Without the optimiser neither key is written, and none comes back.
   writePlanJson(*plan_, path);
   EXPECT_FALSE(readPlanJson(path).optimization.ran);
   EXPECT_FALSE(readPlanJson(path).replay.ran);
+  EXPECT_FALSE(readPlanJson(path).planner_replay.ran);
   std::remove(path.c_str());
 }
 
@@ -187,6 +197,7 @@ TEST_F(PlanReplayTest, MalformedOptimisationKeysAreNamed) {
   Plan plan = *plan_;
   plan.optimization = {true, "Solve_Succeeded", 42, 0.25, 123.5, 67.25, ""};
   plan.replay = verifyPlan(planner_->simulator(), plan, {});
+  plan.planner_replay = plan.replay;
   const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_bad_opt.json";
   writePlanJson(plan, path);
   std::ifstream in(path);
@@ -213,6 +224,12 @@ TEST_F(PlanReplayTest, MalformedOptimisationKeysAreNamed) {
   bad = j;
   bad["replay"]["open_loop"]["phases"] = 3;
   expectRefused(bad, "replay.open_loop.phases");
+  bad = j;
+  bad["planner_replay"].erase("accepted");
+  expectRefused(bad, "planner_replay.accepted");
+  bad = j;
+  bad["planner_replay"]["open_loop"]["min_f_n"] = "none";
+  expectRefused(bad, "planner_replay.open_loop.min_f_n");
   bad = j;
   bad["segments"][0]["tau_end"] = {1.0};
   expectRefused(bad, "tau_end");

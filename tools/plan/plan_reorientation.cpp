@@ -42,15 +42,25 @@ void printRefineSummary(const trajopt::RefineOutcome& r) {
   const planner::OptimizationSummary& o = r.plan.optimization;
   std::printf("optimisation: %s, %d iterations, %.3f s, cost %.6g -> %.6g\n", o.status.c_str(),
               o.iterations, o.solve_time, o.cost_before, o.cost_after);
-  if (!r.plan.replay.ran) return;
   const planner::ReplaySummary& s = r.plan.replay;
-  for (const auto& [name, x] :
-       {std::pair{"closed loop", &s.closed_loop}, std::pair{"open loop", &s.open_loop}})
+  if (s.ran) {
+    for (const auto& [name, x] :
+         {std::pair{"closed loop", &s.closed_loop}, std::pair{"open loop", &s.open_loop}})
+      std::printf(
+          "replay %s: position error %.4g m, angle error %.4g deg, min f_n %.4g N, "
+          "phases %s\n",
+          name, x->position_error, x->angle_error * 180.0 / M_PI, x->min_f_n, x->phases.c_str());
+    std::printf("optimised plan %s\n", r.accepted ? "accepted" : "rejected");
+  }
+  const planner::ReplaySummary& k = r.plan.planner_replay;
+  if (k.ran)
     std::printf(
-        "replay %s: position error %.4g m, angle error %.4g deg, min f_n %.4g N, "
-        "phases %s\n",
-        name, x->position_error, x->angle_error * 180.0 / M_PI, x->min_f_n, x->phases.c_str());
-  std::printf("optimised plan %s\n", r.accepted ? "accepted" : "rejected");
+        "planner's plan, replay closed loop: position error %.4g m, angle error %.4g deg, "
+        "phases %s: %s\n",
+        k.closed_loop.position_error, k.closed_loop.angle_error * 180.0 / M_PI,
+        k.closed_loop.phases.c_str(),
+        k.accepted ? "passes the same check"
+                   : "does NOT pass the same check (the tracking controller does not hold it)");
 }
 
 int run(int argc, char** argv) {

@@ -72,6 +72,18 @@ RefineOutcome refinePlan(const PlanOptimizer& optimizer, const Simulator& simula
   if (!note.empty()) summary.message += (summary.message.empty() ? "" : "; ") + note;
   out.plan.optimization = summary;
   out.plan.replay = verdict;
+  if (!out.accepted) {
+    // The plan in the file is the planner's: say whether it passes the same check, since a
+    // planner's plan can be exact in simulation yet not survive joint tracking.
+    try {
+      out.plan.planner_replay = planner::verifyPlan(simulator, plan, replay);
+    } catch (const std::exception&) {
+      out.plan.planner_replay = {};
+    }
+    if (!finiteReplay(out.plan.planner_replay.closed_loop) ||
+        !finiteReplay(out.plan.planner_replay.open_loop))
+      out.plan.planner_replay = {};  // diverged: not written
+  }
   return out;
 }
 

@@ -22,15 +22,18 @@
 /// |                 | plans: the collocation knots): `t`, `q`, `v`, `tau` (held over |
 /// |                 | the step that ends here), `f_n` per contact, `phase` of that step |
 /// | `optimization`  | only when the optimiser ran: `status` (Ipopt's name of its |
-/// |                 | return status), `iterations`, `solve_time` [s] (not with --reproducible), `cost_before`, |
-/// |                 | `cost_after` (effort integral of tau^T W tau on the planner's / optimised plan), and |
-/// |                 | `message` (why it failed or was rejected) when not empty |
-/// | `replay`        | only when the plan was replayed (plan_replay.h): `closed_loop` |
-/// |                 | {`position_error` [m], `angle_error` [rad], `min_f_n` [N], |
+/// |                 | return status), `iterations`, `solve_time` [s] (not with --reproducible),
+/// `cost_before`, | |                 | `cost_after` (effort integral of tau^T W tau on the
+/// planner's / optimised plan), and | |                 | `message` (why it failed or was rejected)
+/// when not empty | | `replay`        | only when the plan was replayed (plan_replay.h):
+/// `closed_loop` | |                 | {`position_error` [m], `angle_error` [rad], `min_f_n` [N], |
 /// |                 | `phases`, `max_tracking_error` [rad or m]} and `open_loop` {the |
 /// |                 | same without `max_tracking_error`} |
 /// | `accepted`      | with `optimization` or `replay`: true when the optimised plan |
 /// |                 | passed the replay (plan_replay.h) and is the one in the file |
+/// | `planner_replay` | only when an optimised plan was not accepted: the same two |
+/// |                 | replays of the plan in the file (the planner's), and `accepted`, |
+/// |                 | whether that plan passes the same rule |
 ///
 /// CSV (writePlanCsv): one row per sample: t, q..., v..., tau..., f_n..., phase.
 /// Files are written to a temporary name and renamed; a plan with a NaN is refused.
@@ -78,7 +81,7 @@ struct ReplayResult {
   double max_tracking_error = 0.0;  ///< closed loop only: max joint error [rad or m]
 };
 
-/// \brief Closed- and open-loop replays of an optimised plan and the verdict.
+/// \brief Closed- and open-loop replays of a plan and the verdict.
 struct ReplaySummary {
   bool ran = false;
   ReplayResult closed_loop, open_loop;
@@ -111,6 +114,8 @@ struct Plan {
   std::vector<PlanSample> samples;
   OptimizationSummary optimization;  ///< written when optimization.ran
   ReplaySummary replay;              ///< written when replay.ran (with `accepted`)
+  /// \brief The kept planner's plan's own replay (written when planner_replay.ran).
+  ReplaySummary planner_replay;
   /// \brief Largest |(q, v)| difference between the planner's tree states and the plan's
   ///        re-simulation at the segment ends (not written to files).
   double path_mismatch = 0.0;

@@ -21,8 +21,10 @@ struct RefineOutcome {
 /// \brief Optimise `plan` with `optimizer`; on success verify it (planner::verifyPlan).
 ///        Accepted: the refined plan with `optimization`, `replay`, accepted = true.
 ///        Otherwise: the planner's plan with `optimization` (message = the reason), the
-///        replay of the optimised plan when it ran, accepted = false. Every number in the
-///        summaries is finite (a non-finite one is reported in the reason and zeroed).
+///        replay of the optimised plan when it ran, accepted = false, and
+///        `planner_replay`: the planner's plan verified by the same rule (left out if that
+///        replay diverges). Every number in the summaries is finite (a non-finite one is
+///        reported in the reason and zeroed).
 RefineOutcome refinePlan(const PlanOptimizer& optimizer, const Simulator& simulator,
                          const planner::Plan& plan, const planner::ReplaySettings& replay);
 
