@@ -209,43 +209,7 @@ void writePlanCsv(const Plan& plan, const std::string& path) {
 
 std::string planCsvText(const Plan& plan) {
   if (plan.q0.size() == 0) throw std::runtime_error("empty plan");
-  const int n = static_cast<int>(plan.q0.size()), m = n - 4;
-  std::string text = "t";
-  const char* names[] = {"x", "y", "phi", "theta"};
-  for (const char* pre : {"", "d"}) {
-    for (int k = 0; k < n; ++k) {
-      text += ',';
-      text += pre;
-      if (k < 4) {
-        text += names[k];
-      } else {
-        text += 'l';
-        text += std::to_string(k - 3);
-      }
-    }
-  }
-  text += ",tau_theta";
-  for (int i = 1; i <= m; ++i) text += ",tau_" + std::to_string(i);
-  for (int i = 1; i <= m; ++i) text += ",f_n" + std::to_string(i);
-  text += ",phase\n";
-  char buf[64];
-  auto put = [&](double x) {
-    if (!std::isfinite(x)) throw std::runtime_error("plan holds a NaN or infinite value");
-    std::snprintf(buf, sizeof buf, ",%.17g", x);
-    text += buf;
-  };
-  for (const PlanSample& s : plan.samples) {
-    std::snprintf(buf, sizeof buf, "%.17g", s.t);
-    text += buf;
-    for (int k = 0; k < n; ++k) put(s.q[k]);
-    for (int k = 0; k < n; ++k) put(s.v[k]);
-    for (int k = 0; k < s.tau.size(); ++k) put(s.tau[k]);
-    for (int k = 0; k < s.f_n.size(); ++k) put(s.f_n[k]);
-    text += ',';
-    text += toString(s.phase);
-    text += '\n';
-  }
-  return text;
+  return trajectoryCsvText(plan.samples, static_cast<int>(plan.q0.size()) - 4);
 }
 
 Plan readPlanJson(const std::string& path) {
@@ -338,7 +302,9 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
       p.v = readVec<VecQ>(need(s, "v", "samples[]"), path + ": samples[].v");
       p.tau = readVec<VecU>(need(s, "tau", "samples[]"), path + ": samples[].tau");
       p.f_n = readVec<VecC>(need(s, "f_n", "samples[]"), path + ": samples[].f_n");
-      p.phase = parsePhase(need(s, "phase", "samples[]").get<std::string>());
+      // A step's phase may be "unsupported" (trajectory_sample.h); a segment's may not.
+      const std::string phase = need(s, "phase", "samples[]").get<std::string>();
+      p.phase = phase == toString(Phase::kUnsupported) ? Phase::kUnsupported : parsePhase(phase);
       if (p.q.size() != n || p.v.size() != n || p.tau.size() != n - 3 || p.f_n.size() != n - 4)
         throw InputError(path + ": samples[] entries have wrong lengths");
       plan.samples.push_back(std::move(p));

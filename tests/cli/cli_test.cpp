@@ -318,9 +318,22 @@ TEST(PlanReorientation, SolvesASmallProblemAndWritesJsonAndCsv) {
   for (const char* key : {"optimization", "replay", "accepted"})  // --no-optimize
     EXPECT_FALSE(j.contains(key)) << key;
   const std::string text = slurp(csv);
-  EXPECT_EQ(text.rfind("t,x,y,phi,theta,l1,l2,l3,dx,", 0), 0u);
-  EXPECT_EQ(static_cast<size_t>(std::count(text.begin(), text.end(), '\n')),
-            j["samples"].size() + 1);
+  // rbsf-simulate's columns (one CSV format for trajectories), one row per sample, and
+  // the rows agree with the JSON samples to the last bit.
+  EXPECT_EQ(text.substr(0, text.find('\n')),
+            "t,x,y,phi,theta,l1,l2,l3,dx,dy,dphi,dtheta,dl1,dl2,dl3,tau_theta,tau_1,tau_2,tau_3,"
+            "fn_1,fn_2,fn_3,phase");
+  const std::vector<std::string> rows = lines(text);
+  ASSERT_EQ(rows.size(), j["samples"].size() + 1);
+  for (std::size_t k = 0; k + 1 < rows.size(); ++k) {
+    const std::vector<std::string> f = fields(rows[k + 1]);
+    const auto& s = j["samples"][k];
+    ASSERT_EQ(f.size(), 23u);
+    EXPECT_EQ(std::stod(f[0]), s["t"].get<double>());
+    EXPECT_EQ(std::stod(f[3]), s["q"][2].get<double>());
+    EXPECT_EQ(std::stod(f[19]), s["f_n"][0].get<double>());
+    EXPECT_EQ(f[22], s["phase"].get<std::string>());
+  }
 }
 
 /// Every number in a JSON value is finite (the writer's promise: no NaN in a file).

@@ -56,7 +56,7 @@ TEST(TrajectoryWriter, FormatByExtensionAndAtomicWrite) {
   EXPECT_THROW(TrajectoryWriter("csv", 2), InputError);
   EXPECT_EQ(TrajectoryWriter("a.CSV", 2).format(), TrajectoryWriter::Format::kCsv);
   EXPECT_EQ(TrajectoryWriter("a.json", 2).format(), TrajectoryWriter::Format::kJson);
-  EXPECT_EQ(TrajectoryWriter::csvHeader(1),
+  EXPECT_EQ(trajectoryCsvHeader(1),
             "t,x,y,phi,theta,l1,dx,dy,dphi,dtheta,dl1,tau_theta,tau_1,fn_1,phase");
 
   TrajectorySample s;
@@ -76,7 +76,7 @@ TEST(TrajectoryWriter, FormatByExtensionAndAtomicWrite) {
   std::string header, row;
   std::getline(in, header);
   std::getline(in, row);
-  EXPECT_EQ(header, TrajectoryWriter::csvHeader(1));
+  EXPECT_EQ(header, trajectoryCsvHeader(1));
   EXPECT_EQ(row.substr(row.rfind(',') + 1), "P");
   EXPECT_NE(row.find("0.33333333333333331"), std::string::npos) << "17 digits: " << row;
   const auto j = nlohmann::json::parse(std::ifstream(dir + "traj_unit.json"));

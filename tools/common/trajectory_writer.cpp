@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
-#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -30,13 +28,6 @@ bool endsWith(const std::string& s, const std::string& suffix) {
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-void number(std::ostream& out, double x) {
-  if (!std::isfinite(x)) throw std::runtime_error("trajectory holds a non-finite number");
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  out << buf;
-}
-
 }  // namespace
 
 TrajectoryWriter::TrajectoryWriter(std::string path, int m, const std::string& what)
@@ -48,30 +39,6 @@ TrajectoryWriter::TrajectoryWriter(std::string path, int m, const std::string& w
     format_ = Format::kJson;
   } else {
     throw InputError(what + ": '" + path_ + "' must end in .csv or .json (the output format)");
-  }
-}
-
-std::string TrajectoryWriter::csvHeader(int m) {
-  std::string h = "t,x,y,phi,theta";
-  for (int i = 1; i <= m; ++i) h += ",l" + std::to_string(i);
-  h += ",dx,dy,dphi,dtheta";
-  for (int i = 1; i <= m; ++i) h += ",dl" + std::to_string(i);
-  h += ",tau_theta";
-  for (int i = 1; i <= m; ++i) h += ",tau_" + std::to_string(i);
-  for (int i = 1; i <= m; ++i) h += ",fn_" + std::to_string(i);
-  return h + ",phase";
-}
-
-void TrajectoryWriter::writeCsv(std::ostream& out) const {
-  out << csvHeader(m_) << "\n";
-  for (const TrajectorySample& s : samples_) {
-    number(out, s.t);
-    for (const auto* v : {&s.q, &s.v}) {
-      for (int k = 0; k < v->size(); ++k) out << ',', number(out, (*v)[k]);
-    }
-    for (int k = 0; k < s.tau.size(); ++k) out << ',', number(out, s.tau[k]);
-    for (int k = 0; k < s.f_n.size(); ++k) out << ',', number(out, s.f_n[k]);
-    out << ',' << toString(s.phase) << "\n";
   }
 }
 
@@ -102,7 +69,7 @@ void TrajectoryWriter::commit() const {
   // Format everything first (a non-finite value stops here, before any file exists).
   std::ostringstream text;
   if (format_ == Format::kCsv) {
-    writeCsv(text);
+    text << trajectoryCsvText(samples_, m_);
   } else {
     writeJson(text);
   }

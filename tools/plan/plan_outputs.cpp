@@ -50,24 +50,15 @@ bool PlanOutputs::any() const {
 
 std::vector<TrajectorySample> PlanOutputs::frames(const RbsfModel& model,
                                                   const planner::Plan& plan) {
-  // Filled in place: element-wise copies keep GCC 12's -Wstringop-overflow false positive
-  // on moved fixed-capacity Eigen vectors away.
-  const int m = model.numFingers();
-  std::vector<TrajectorySample> frames(std::max<std::size_t>(plan.samples.size(), 1));
-  for (std::size_t k = 0; k < plan.samples.size(); ++k) {
-    const planner::PlanSample& s = plan.samples[k];
-    TrajectorySample& f = frames[k];
-    f.t = s.t, f.q = s.q, f.v = s.v, f.tau = s.tau, f.f_n = s.f_n, f.phase = s.phase;
-  }
-  if (plan.samples.empty()) {  // no motion: the part at rest at the start
-    TrajectorySample& f = frames[0];
-    f.q = plan.q0;
-    f.v = VecQ::Zero(layout::configDim(m));
-    f.tau = VecU::Zero(layout::controlDim(m));
-    f.f_n = VecC::Zero(m);
-    f.phase = Phase::kC;
-  }
-  return frames;
+  if (!plan.samples.empty()) return plan.samples;  // a plan's samples are trajectory samples
+  const int m = model.numFingers();                // no motion: the part at rest at the start
+  TrajectorySample f;
+  f.q = plan.q0;
+  f.v = VecQ::Zero(layout::configDim(m));
+  f.tau = VecU::Zero(layout::controlDim(m));
+  f.f_n = VecC::Zero(m);
+  f.phase = Phase::kC;
+  return {f};
 }
 
 void PlanOutputs::write(const RbsfModel& model, const planner::Plan& plan) const {

@@ -35,7 +35,7 @@
 /// |                 | replays of the plan in the file (the planner's), and `accepted`, |
 /// |                 | whether that plan passes the same rule |
 ///
-/// CSV (writePlanCsv): one row per sample: t, q..., v..., tau..., f_n..., phase.
+/// CSV (writePlanCsv): one row per sample, the columns of trajectory_sample.h.
 /// Files are written to a temporary name and renamed; a plan with a NaN is refused.
 
 #include <cstdint>
@@ -46,6 +46,7 @@
 #include "rbsf/dynamics/phase.h"
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/trajectory_sample.h"
 
 namespace rbsf::planner {
 
@@ -88,14 +89,8 @@ struct ReplaySummary {
   bool accepted = false;
 };
 
-/// \brief One point of the densely sampled trajectory.
-struct PlanSample {
-  double t = 0.0;
-  VecQ q, v;
-  VecU tau;
-  VecC f_n;
-  Phase phase = Phase::kC;
-};
+/// \brief One point of the densely sampled trajectory (trajectory_sample.h).
+using PlanSample = TrajectorySample;
 
 /// \brief The planner's result.
 struct Plan {
