@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
 
 namespace rbsf::planner {
@@ -103,24 +104,6 @@ void requireFiniteJson(const json& j) {
     for (const json& e : j) requireFiniteJson(e);
 }
 
-void writeAtomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::trunc);
-    if (!f) throw InputError(path + ": cannot write");
-    f << text;
-    f.flush();
-    if (!f) {
-      std::remove(tmp.c_str());
-      throw InputError(path + ": write failed");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw InputError(path + ": cannot rename the temporary file into place");
-  }
-}
-
 template <class V>
 V readVec(const json& j, const std::string& what) {
   if (!j.is_array()) throw InputError(what + " must be an array of numbers");
@@ -200,11 +183,11 @@ std::string planJsonText(const Plan& plan, const PlanFileOptions& options) {
 }
 
 void writePlanJson(const Plan& plan, const std::string& path, const PlanFileOptions& options) {
-  writeAtomically(path, planJsonText(plan, options));
+  writeFileAtomically(path, planJsonText(plan, options), "plan file");
 }
 
 void writePlanCsv(const Plan& plan, const std::string& path) {
-  writeAtomically(path, planCsvText(plan));
+  writeFileAtomically(path, planCsvText(plan), "plan CSV");
 }
 
 std::string planCsvText(const Plan& plan) {

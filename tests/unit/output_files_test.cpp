@@ -13,7 +13,7 @@
 
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/planner/plan.h"
-#include "rbsf/tools/atomic_file.h"
+#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/tools/interrupt.h"
 
 namespace rbsf::tools {

@@ -1,7 +1,5 @@
 #include "rbsf/bench/benchmark_log.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -240,23 +238,6 @@ void mergeLog(ExperimentLog& into, const ExperimentLog& from) {
   }
   setHeaderValue(into.header, " runs per planner", std::to_string(most));
   setHeaderValue(into.header, " is the random seed", "0");
-}
-
-void writeFileAtomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp." + std::to_string(getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    f << text;
-    f.flush();
-    if (!f) {
-      std::remove(tmp.c_str());
-      throw InputError(path + ": cannot write the file");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw InputError(path + ": cannot write the file");
-  }
 }
 
 }  // namespace rbsf::bench

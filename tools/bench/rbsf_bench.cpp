@@ -29,6 +29,7 @@
 #include "rbsf/bench/run_list.h"
 #include "rbsf/bench/single_run.h"
 #include "rbsf/bench/summary.h"
+#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
@@ -157,11 +158,11 @@ void finish(const std::vector<ExperimentLog>& logs, const std::string& dir, bool
   std::vector<std::string> paths;
   for (const ExperimentLog& log : logs) {
     paths.push_back((fs::path(dir) / (log.name() + ".log")).string());
-    writeFileAtomically(paths.back(), formatLog(log));
+    writeFileAtomically(paths.back(), formatLog(log), "--out");
   }
   makeArenaDatabase(paths, (fs::path(dir) / "benchmark.db").string());
   const std::string table = formatSummary(summarize(logs), optimize);
-  writeFileAtomically((fs::path(dir) / "summary.txt").string(), table);
+  writeFileAtomically((fs::path(dir) / "summary.txt").string(), table, "--out");
   std::printf("%s", table.c_str());
   std::printf("logs, Planner Arena database (benchmark.db) and summary.txt in %s\n", dir.c_str());
 }

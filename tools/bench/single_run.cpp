@@ -12,6 +12,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "rbsf/bench/benchmark_log.h"
+#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
 namespace rbsf::bench {
@@ -149,7 +150,7 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
     for (const std::string& name : optimizerStatuses()) e += "|" + name;
     log.enums.push_back(e);
   }
-  writeFileAtomically(log_path, formatLog(log));
+  writeFileAtomically(log_path, formatLog(log), "--out");
 }
 
 }  // namespace rbsf::bench

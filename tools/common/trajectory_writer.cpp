@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/tools/atomic_file.h"
+#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
 

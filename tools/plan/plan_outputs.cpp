@@ -10,7 +10,7 @@
 
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/state_layout.h"
-#include "rbsf/tools/atomic_file.h"
+#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/tools/html_report.h"
 #include "rbsf/tools/svg_animation.h"
 

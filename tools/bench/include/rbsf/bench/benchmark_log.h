@@ -71,8 +71,4 @@ std::string formatLog(const ExperimentLog& log);
 /// \throws InputError when the experiment names differ or a run index appears twice.
 void mergeLog(ExperimentLog& into, const ExperimentLog& from);
 
-/// \brief Write text to `path` through a temporary file in the same folder and a rename.
-/// \throws InputError naming the path when it cannot be written.
-void writeFileAtomically(const std::string& path, const std::string& text);
-
 }  // namespace rbsf::bench

@@ -1,7 +1,7 @@
 /// \file
 /// \brief Atomic output files (see atomic_file.h).
 
-#include "rbsf/tools/atomic_file.h"
+#include "rbsf/dynamics/atomic_file.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -11,7 +11,7 @@
 
 #include "rbsf/dynamics/errors.h"
 
-namespace rbsf::tools {
+namespace rbsf {
 
 std::string temporaryPathFor(const std::string& path) {
   return path + ".tmp." + std::to_string(::getpid());
@@ -52,4 +52,4 @@ void checkWritable(const std::string& path, const std::string& what) {
     throw InputError(message + "it is a directory");
 }
 
-}  // namespace rbsf::tools
+}  // namespace rbsf

@@ -3,11 +3,12 @@
 /// \brief Output files that are complete or absent: text written to a temporary name in
 ///        the target's directory, flushed, then renamed into place (rename(2) is atomic
 ///        within one file system, so a reader sees the old file or the whole new one).
+///        Plan files, trajectories, pictures and benchmark logs are all written this way.
 
 #include <string>
 #include <string_view>
 
-namespace rbsf::tools {
+namespace rbsf {
 
 /// \brief The temporary name used for `path` by writeFileAtomically():
 ///        "<path>.tmp.<pid>" (the pid keeps concurrent runs apart).
@@ -24,4 +25,4 @@ void writeFileAtomically(const std::string& path, std::string_view text, const s
 /// \throws InputError "<what>: cannot write '<path>': <reason>".
 void checkWritable(const std::string& path, const std::string& what);
 
-}  // namespace rbsf::tools
+}  // namespace rbsf
