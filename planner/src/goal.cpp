@@ -42,6 +42,7 @@ bool PoseGoal::isSatisfied(const ompl::base::State* state, double* distance) con
   const auto* s = state->as<SimStateSpace::StateType>();
   const bool ok = d <= threshold_ && support_.supported(s->sim->q, s->sim->xi_hint);
   if (ok || d < best_) best_ = std::min(best_, d);
+  reached_ = reached_ || ok;
   return ok;
 }
 

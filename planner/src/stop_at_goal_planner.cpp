@@ -19,7 +19,9 @@ StopAtGoalPlanner::StopAtGoalPlanner(ob::PlannerPtr inner, std::shared_ptr<const
 
 ob::PlannerStatus StopAtGoalPlanner::solve(const ob::PlannerTerminationCondition& ptc) {
   const PoseGoal* goal = goal_.get();
-  const ob::PlannerTerminationCondition reached([goal] { return goal->bestDistance() <= 1.0; });
+  // Not bestDistance() <= 1: an unsupported state in the region (a part falling through the
+  // goal pose) is no solution, and stopping there would return an approximate plan early.
+  const ob::PlannerTerminationCondition reached([goal] { return goal->reached(); });
   return inner_->solve(ob::plannerOrTerminationCondition(ptc, reached));
 }
 

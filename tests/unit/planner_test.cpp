@@ -11,7 +11,10 @@
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/state_layout.h"
+#include "rbsf/planner/goal.h"
+#include "rbsf/planner/planner_setup.h"
 #include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/state_space.h"
 
 namespace rbsf::planner {
 namespace {
@@ -97,6 +100,32 @@ TEST_F(PlannerTest, SmallProblemSolvedExactlyAndReproducedByResimulation) {
   const VecQ& qf = qs.back();
   EXPECT_LE(std::hypot(qf[layout::kX] - goal.x, qf[layout::kY] - goal.y), 0.01);
   EXPECT_LE(std::abs(qf[layout::kPhi] - goal.phi), 2.0 * M_PI / 180.0 + 1e-12);
+}
+
+TEST_F(PlannerTest, GoalIsReachedOnlyBySupportedStates) {
+  // The part at the goal pose with every finger retracted is in the region (distance 0)
+  // but falling: the goal's progress figure takes it, yet it is no solution, and the search
+  // must not stop on it. The same pose held by the fingers is.
+  ReorientationPlanner rp(model, testSettings(1));
+  Problem at_goal = smallProblem();
+  at_goal.start = at_goal.goal;  // the placement rule puts the fingers on the part there
+  const VecQ held = rp.checkProblem(at_goal);
+  const PlannerSetup setup = rp.setup(smallProblem());
+  const auto si = setup.simple_setup->getSpaceInformation();
+  ompl::base::State* state = si->allocState();
+  VecQ falling = held;
+  for (int i = 0; i < model.numFingers(); ++i)
+    falling[layout::stroke(i)] = model.cell().fingers[i].stroke_min;
+  setup.space->fromSim(SimState(falling, VecQ::Zero(falling.size())), state);
+  double d = -1.0;
+  EXPECT_FALSE(setup.goal->isSatisfied(state, &d));
+  EXPECT_LE(d, 1e-9);
+  EXPECT_LE(setup.goal->bestDistance(), 1e-9);
+  EXPECT_FALSE(setup.goal->reached());
+  setup.space->fromSim(SimState(held, VecQ::Zero(held.size())), state);
+  EXPECT_TRUE(setup.goal->isSatisfied(state, &d));
+  EXPECT_TRUE(setup.goal->reached());
+  si->freeState(state);
 }
 
 TEST_F(PlannerTest, SameSeedSamePlan) {

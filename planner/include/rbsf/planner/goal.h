@@ -30,8 +30,12 @@ class PoseGoal : public ompl::base::GoalRegion {
   bool isSatisfied(const ompl::base::State* state, double* distance) const override;
   using ompl::base::GoalRegion::isSatisfied;
 
-  /// \brief Smallest distance (in tolerance units) passed to isSatisfied so far.
+  /// \brief Smallest distance (in tolerance units) passed to isSatisfied so far, supported
+  ///        or not (the search's progress figure).
   double bestDistance() const { return best_; }
+  /// \brief True once isSatisfied has accepted a state: within the region and supported.
+  ///        (bestDistance() <= 1 alone may come from a part falling through the goal pose.)
+  bool reached() const { return reached_; }
 
  private:
   Pose goal_;
@@ -39,6 +43,7 @@ class PoseGoal : public ompl::base::GoalRegion {
   const SupportValidityChecker& support_;
   bool absolute_angle_;
   mutable double best_ = std::numeric_limits<double>::infinity();
+  mutable bool reached_ = false;
 };
 
 /// \brief a - b wrapped to (-pi, pi].
