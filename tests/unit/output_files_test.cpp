@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/planner/plan.h"
-#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/tools/interrupt.h"
 
 namespace rbsf::tools {

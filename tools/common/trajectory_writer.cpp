@@ -9,8 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/atomic_file.h"
+#include "rbsf/dynamics/errors.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
 

@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <utility>
 
+#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/state_layout.h"
-#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/tools/html_report.h"
 #include "rbsf/tools/svg_animation.h"
 

@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
+#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/simulator.h"
-#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/controls_file.h"
 #include "rbsf/tools/svg_animation.h"
