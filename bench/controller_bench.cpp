@@ -135,4 +135,3 @@ BENCHMARK(BM_ReferenceTrajectorySample);
 
 }  // namespace
 }  // namespace rbsf::controller
-

@@ -97,10 +97,11 @@ void printTable(const StateAnalysis& a, const RbsfModel& model) {
 }
 
 int run(int argc, char** argv) {
-  CLI::App app{"The RBSF model's analysis of one state: contacts, phase-U LCP, phase, "
-               "conditions for turning the part (paper 3), static holding. SI units; angles "
-               "in radians or with a deg suffix.",
-               "rbsf-analyze"};
+  CLI::App app{
+      "The RBSF model's analysis of one state: contacts, phase-U LCP, phase, "
+      "conditions for turning the part (paper 3), static holding. SI units; angles "
+      "in radians or with a deg suffix.",
+      "rbsf-analyze"};
   app.footer(kExitStatusHelp);
   Options o;
   app.add_option("--cell", o.cell, "cell YAML file")->required();
