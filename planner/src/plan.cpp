@@ -36,6 +36,13 @@ Phase parsePhase(const std::string& text) {
   throw InputError("phase must be \"C\", \"P\" or \"U\" (got \"" + text + "\")");
 }
 
+Phase majorityPhase(const PhaseCounts& steps) {
+  int best = 0;
+  for (int p = 1; p < 3; ++p)
+    if (steps[p] > steps[best]) best = p;
+  return static_cast<Phase>(best);
+}
+
 std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ& q0,
                                          std::vector<PlanSegment>& segments, int sample_steps,
                                          std::vector<SimState>* ends) {
@@ -57,7 +64,7 @@ std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ&
   };
   long step = 0;
   for (PlanSegment& seg : segments) {
-    std::array<int, 3> count{};  // C, P, U
+    PhaseCounts count{};
     for (int k = 0; k < seg.steps; ++k) {
       simulator.step(state, seg.tau, ws, &report);
       const Phase ph = report.phase == Phase::kUnsupported ? Phase::kU : report.phase;
@@ -71,10 +78,7 @@ std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ&
       }
       if (step % sample_steps == 0 || k + 1 == seg.steps) record(seg.tau, ph);
     }
-    int best = 0;
-    for (int p = 1; p < 3; ++p)
-      if (count[p] > count[best]) best = p;
-    seg.phase = static_cast<Phase>(best);
+    seg.phase = majorityPhase(count);
     if (ends) ends->push_back(state);
   }
   return samples;
@@ -240,6 +244,13 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
                        ", " + std::to_string(static_cast<std::uint64_t>(hi)) + "]");
     return v.get<std::uint64_t>();
   };
+  auto boolean = [&](const json& o, const char* key, const std::string& where) {
+    const json& v = need(o, key, where);
+    if (!v.is_boolean())
+      throw InputError(path + ": " + where + (where.empty() ? "" : ".") + key +
+                       " must be true or false");
+    return v.get<bool>();
+  };
   auto pose = [&](const char* key) {
     const json& p = need(j, key, "");
     return Pose{num(p, "x", key), num(p, "y", key), num(p, "phi", key)};
@@ -331,15 +342,10 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
     if (j.contains("replay")) plan.replay = summary("replay");
     if (j.contains("planner_replay")) {
       plan.planner_replay = summary("planner_replay");
-      const json& a = need(j.at("planner_replay"), "accepted", "planner_replay");
-      if (!a.is_boolean())
-        throw InputError(path + ": planner_replay.accepted must be true or false");
-      plan.planner_replay.accepted = a.get<bool>();
+      plan.planner_replay.accepted = boolean(j.at("planner_replay"), "accepted", "planner_replay");
     }
     if (plan.replay.ran || plan.optimization.ran) {
-      const json& a = need(j, "accepted", "");
-      if (!a.is_boolean()) throw InputError(path + ": accepted must be true or false");
-      plan.replay.accepted = a.get<bool>();
+      plan.replay.accepted = boolean(j, "accepted", "");
     }
     return plan;
   } catch (const json::exception& e) {

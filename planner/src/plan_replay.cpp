@@ -1,7 +1,6 @@
 #include "rbsf/planner/plan_replay.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -63,19 +62,15 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
   VecU tau;
   ReplayResult r;
   double min_fn = std::numeric_limits<double>::infinity();
-  // Each segment's phase is the majority of its steps' phases (ties to C, then P), the rule
-  // simulateSegments labels the planner's segments by, so a plan's own open-loop replay
-  // reproduces its labels exactly (plannedPhases).
+  // Each segment is labelled by majorityPhase, as the planner labels its own segments, so a
+  // plan's own open-loop replay reproduces its labels exactly (plannedPhases).
   std::vector<std::pair<Phase, double>> runs;
-  std::array<int, 3> count{};  // C, P, U steps in the current segment
+  PhaseCounts count{};  // of the current segment
   std::size_t segment = 0;
   double segment_end = plan.segments.empty() ? 0.0 : plan.segments.front().duration;
   auto closeSegment = [&] {  // a segment shorter than a step has no phase of its own
     if (count[0] + count[1] + count[2] == 0) return;
-    int best = 0;
-    for (int p = 1; p < 3; ++p)
-      if (count[p] > count[best]) best = p;
-    runs.emplace_back(static_cast<Phase>(best), plan.segments[segment].duration);
+    runs.emplace_back(majorityPhase(count), plan.segments[segment].duration);
     count.fill(0);
   };
   for (long n = 0; n < steps; ++n) {

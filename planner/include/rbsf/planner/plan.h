@@ -38,6 +38,7 @@
 /// CSV (writePlanCsv): one row per sample, the columns of trajectory_sample.h.
 /// Files are written to a temporary name and renamed; a plan with a NaN is refused.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -120,6 +121,15 @@ struct Plan {
   /// \brief The phase letters of the segments with runs merged, e.g. "CUCU".
   std::string phaseSequence() const;
 };
+
+/// \brief Steps counted per phase over one segment, in the order C, P, U (an unsupported
+///        step counts as U).
+using PhaseCounts = std::array<int, 3>;
+
+/// \brief The phase a segment is labelled with: the one most of its steps took, ties going
+///        to C, then P. The one rule for the planner's segments (simulateSegments) and for
+///        replays (plan_replay.h), so a plan replayed open loop shows its own labels.
+Phase majorityPhase(const PhaseCounts& steps);
 
 /// \brief Simulate `segments` from q0 at rest (fresh SimState), fill their `phase` and
 ///        return the samples (every `sample_steps` steps and every segment end).
