@@ -3,7 +3,11 @@
 // goal reached at rest, effort lower than the planner's); failures keep the input plan.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/trajopt/plan_optimizer.h"
@@ -149,6 +153,23 @@ TEST(TrajoptFailure, IterationLimitKeepsTheInputPlan) {
   EXPECT_EQ(out.plan.segments.size(), test::shortPlan().segments.size());
   EXPECT_EQ(out.plan.samples.size(), test::shortPlan().samples.size());
   EXPECT_TRUE(out.plan.segments.front().tau_end.size() == 0);
+}
+
+TEST(TrajoptOptions, AnIpoptOptFileInTheWorkingDirectoryIsIgnored) {
+  // Ipopt reads ./ipopt.opt unless told not to; the optimiser's result must not depend on
+  // the caller's working directory. The file here would stop Ipopt after one iteration.
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("rbsf_ipopt_opt_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "ipopt.opt") << "max_iter 1\n";
+  const std::filesystem::path cwd = std::filesystem::current_path();
+  std::filesystem::current_path(dir);
+  const PlanOptimizer opt(test::defaultModel(), testSettings());
+  const OptimizedPlan out = opt.optimize(test::shortPlan());
+  std::filesystem::current_path(cwd);
+  std::filesystem::remove_all(dir);
+  EXPECT_TRUE(out.success) << out.plan.optimization.status;
+  EXPECT_GT(out.plan.optimization.iterations, 1);
 }
 
 TEST(TrajoptFailure, TooFewKnotsForThePhaseRunsIsReported) {

@@ -146,7 +146,9 @@ OptimizedPlan PlanOptimizer::optimize(const planner::Plan& plan) const {
       o.SetIntegerValue("file_print_level", 5);
     }
   }
-  Ipopt::ApplicationReturnStatus status = app->Initialize();
+  // "": no options file. Ipopt would otherwise read ./ipopt.opt, and a stray file in the
+  // caller's working directory would silently change every plan optimised from there.
+  Ipopt::ApplicationReturnStatus status = app->Initialize("");
   Ipopt::SmartPtr<IpoptAdapter> nlp = new IpoptAdapter(problem, settings_.exact_hessian,
                                                        settings_.cancel, settings_.max_solve_time);
   if (status == Ipopt::Solve_Succeeded) status = app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
