@@ -95,10 +95,15 @@ json vec(const auto& v) {
 json poseJson(const Pose& p) { return {{"x", p.x}, {"y", p.y}, {"phi", p.phi}}; }
 
 json replayJson(const ReplayResult& r) {
-  return {{"position_error", r.position_error},
-          {"angle_error", r.angle_error},
-          {"min_f_n", r.min_f_n},
-          {"phases", r.phases}};
+  json j = {{"position_error", r.position_error},
+            {"angle_error", r.angle_error},
+            {"min_f_n", r.min_f_n},
+            {"phases", r.phases}};
+  if (r.departure_time >= 0.0) {
+    j["departure_time"] = r.departure_time;
+    j["departure_phase"] = r.departure_phase;
+  }
+  return j;
 }
 
 void requireFiniteJson(const json& j) {
@@ -329,6 +334,14 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
         x.angle_error = num(o, "angle_error", where);
         x.min_f_n = num(o, "min_f_n", where);
         x.phases = text(o, "phases", where);
+        if (o.contains("departure_time")) {
+          x.departure_time = num(o, "departure_time", where);
+          x.departure_phase = text(o, "departure_phase", where);
+          if (!(x.departure_time >= 0.0) ||
+              (x.departure_phase != "C" && x.departure_phase != "P" && x.departure_phase != "U"))
+            throw InputError(path + ": " + where +
+                             ".departure_time must be >= 0 and departure_phase C, P or U");
+        }
         return x;
       };
       ReplaySummary out;

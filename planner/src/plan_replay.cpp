@@ -73,6 +73,20 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
     runs.emplace_back(majorityPhase(count), plan.segments[segment].duration);
     count.fill(0);
   };
+  // Where the part first leaves the plan's own path (by the acceptance tolerances): the
+  // time and planned phase a user looks at to see which part of a plan is fragile.
+  auto checkDeparture = [&](double t) {
+    if (r.departure_time >= 0.0) return;
+    const double dp =
+        std::hypot(state.q[layout::kX] - at.q[layout::kX], state.q[layout::kY] - at.q[layout::kY]);
+    const double da = std::abs(state.q[layout::kPhi] - at.q[layout::kPhi]);
+    if (!(dp <= settings.position_tolerance) || !(da <= settings.angle_tolerance)) {
+      r.departure_time = t;
+      r.departure_phase = plan.segments.empty()
+                              ? std::string("U")
+                              : std::string(1, letter(plan.segments[segment].phase));
+    }
+  };
   for (long n = 0; n < steps; ++n) {
     const double t = static_cast<double>(n) * h;
     while (segment + 1 < plan.segments.size() && t + 0.5 * h >= segment_end) {
@@ -81,6 +95,7 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
     }
     ref.sample(t, at);
     ref.sample(t + 0.5 * h, mid);
+    checkDeparture(t);
     r.max_tracking_error =
         std::max(r.max_tracking_error, TrackingController::jointError(state.q, at));
     if (controller) {
@@ -98,6 +113,7 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
   }
   if (!plan.segments.empty()) closeSegment();
   ref.sample(static_cast<double>(steps) * h, at);
+  checkDeparture(static_cast<double>(steps) * h);
   r.max_tracking_error =
       std::max(r.max_tracking_error, TrackingController::jointError(state.q, at));
   r.position_error =
@@ -133,6 +149,11 @@ bool acceptReplay(const Plan& plan, const ReplayResult& closed, const ReplaySett
   }
   const std::string planned = plannedPhases(plan, settings.min_phase_run);
   if (closed.phases != planned) why += "phases " + closed.phases + " != planned " + planned + "; ";
+  if (!why.empty() && closed.departure_time >= 0.0) {
+    std::snprintf(buf, sizeof buf, "leaves the planned path at t = %.3f s (planned phase %s); ",
+                  closed.departure_time, closed.departure_phase.c_str());
+    why += buf;
+  }
   if (!why.empty()) why.resize(why.size() - 2);
   if (reason) *reason = "closed-loop replay: " + (why.empty() ? std::string("accepted") : why);
   return why.empty();

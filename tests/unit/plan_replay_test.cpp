@@ -69,6 +69,39 @@ TEST_F(PlanReplayTest, OpenLoopRepeatsThePlannersSimulation) {
   // The reference passes through the samples, which are the same simulation.
   EXPECT_LE(r.max_tracking_error, 1e-9);
   EXPECT_EQ(r.phases, plannedPhases(*plan_, ReplaySettings{}.min_phase_run));
+  EXPECT_LT(r.departure_time, 0.0);  // the plan's own path, throughout
+  EXPECT_TRUE(r.departure_phase.empty());
+}
+
+TEST_F(PlanReplayTest, DepartureIsWhereThePartFirstLeavesThePlannedPath) {
+  // The plan's torques from segment k on are dropped: up to t_k the replay is the
+  // planner's own simulation (bit for bit), after it the part falls. The departure must
+  // lie after t_k, carry the planned phase there, grow with the tolerances, and be named
+  // in the verdict.
+  const std::size_t k = plan_->segments.size() / 2;
+  double t_k = 0.0;
+  for (std::size_t s = 0; s < k; ++s) t_k += plan_->segments[s].duration;
+  Plan dropped = *plan_;
+  for (std::size_t s = k; s < dropped.segments.size(); ++s) dropped.segments[s].tau.setZero();
+  const ReplayResult r = replayPlan(planner_->simulator(), dropped, nullptr, {});
+  ASSERT_GE(r.departure_time, 0.0);
+  EXPECT_GE(r.departure_time, t_k - 1e-9);
+  EXPECT_LE(r.departure_time, dropped.duration() + 1e-9);
+  double end = 0.0;
+  std::size_t at = 0;
+  for (; at + 1 < dropped.segments.size(); ++at) {
+    end += dropped.segments[at].duration;
+    if (r.departure_time + 0.5 * dropped.time_step < end) break;
+  }
+  EXPECT_EQ(r.departure_phase, std::string(1, toString(dropped.segments[at].phase)[0]));
+  ReplaySettings loose;
+  loose.position_tolerance *= 5.0;
+  loose.angle_tolerance *= 5.0;
+  const ReplayResult later = replayPlan(planner_->simulator(), dropped, nullptr, loose);
+  EXPECT_GT(later.departure_time, r.departure_time);
+  std::string reason;
+  EXPECT_FALSE(acceptReplay(dropped, r, {}, &reason));
+  EXPECT_NE(reason.find("leaves the planned path at t = "), std::string::npos) << reason;
 }
 
 TEST_F(PlanReplayTest, ReplayLabelsSegmentsByTheRuleThePlannerLabelsThemBy) {
@@ -155,6 +188,8 @@ TEST_F(PlanReplayTest, OptimisationAndReplayKeysRoundTrip) {
   plan.replay = verifyPlan(planner_->simulator(), plan, {});
   plan.planner_replay = verifyPlan(planner_->simulator(), *plan_, {});
   plan.planner_replay.closed_loop.phases = "CPU";  // distinct from `replay`'s
+  plan.replay.closed_loop.departure_time = 0.75;
+  plan.replay.closed_loop.departure_phase = "U";
   const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_opt_plan.json";
   writePlanJson(plan, path);
   const Plan back = readPlanJson(path);
@@ -176,6 +211,10 @@ TEST_F(PlanReplayTest, OptimisationAndReplayKeysRoundTrip) {
   EXPECT_EQ(r.closed_loop.min_f_n, plan.replay.closed_loop.min_f_n);
   EXPECT_EQ(r.closed_loop.phases, plan.replay.closed_loop.phases);
   EXPECT_EQ(r.closed_loop.max_tracking_error, plan.replay.closed_loop.max_tracking_error);
+  EXPECT_EQ(r.closed_loop.departure_time, 0.75);
+  EXPECT_EQ(r.closed_loop.departure_phase, "U");
+  EXPECT_EQ(r.open_loop.departure_time, plan.replay.open_loop.departure_time);
+  EXPECT_EQ(r.open_loop.departure_phase, plan.replay.open_loop.departure_phase);
   EXPECT_EQ(r.open_loop.position_error, plan.replay.open_loop.position_error);
   EXPECT_EQ(r.open_loop.phases, plan.replay.open_loop.phases);
   const ReplaySummary& k = back.planner_replay;
@@ -230,6 +269,14 @@ TEST_F(PlanReplayTest, MalformedOptimisationKeysAreNamed) {
   bad = j;
   bad["planner_replay"]["open_loop"]["min_f_n"] = "none";
   expectRefused(bad, "planner_replay.open_loop.min_f_n");
+  bad = j;
+  bad["replay"]["closed_loop"]["departure_time"] = 0.5;  // without its phase
+  expectRefused(bad, "replay.closed_loop.departure_phase");
+  bad["replay"]["closed_loop"]["departure_phase"] = "X";
+  expectRefused(bad, "departure_phase C, P or U");
+  bad["replay"]["closed_loop"]["departure_phase"] = "P";
+  bad["replay"]["closed_loop"]["departure_time"] = -2.0;
+  expectRefused(bad, "departure_time must be >= 0");
   bad = j;
   bad["segments"][0]["tau_end"] = {1.0};
   expectRefused(bad, "tau_end");

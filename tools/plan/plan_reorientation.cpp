@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <string>
 
 #include "plan_outputs.h"
 #include "rbsf/dynamics/errors.h"
@@ -37,6 +38,15 @@ struct Options {
   bool quiet = false, no_optimize = false, reproducible = false;
 };
 
+/// ", leaves the planned path at t = ... s (phase X)" when the replay did, else "".
+std::string departureText(const planner::ReplayResult& x) {
+  if (x.departure_time < 0.0) return "";
+  char buf[96];
+  std::snprintf(buf, sizeof buf, ", leaves the planned path at t = %.3f s (phase %s)",
+                x.departure_time, x.departure_phase.c_str());
+  return buf;
+}
+
 /// One line on the optimisation and one per replay.
 void printRefineSummary(const trajopt::RefineOutcome& r) {
   const planner::OptimizationSummary& o = r.plan.optimization;
@@ -48,17 +58,18 @@ void printRefineSummary(const trajopt::RefineOutcome& r) {
          {std::pair{"closed loop", &s.closed_loop}, std::pair{"open loop", &s.open_loop}})
       std::printf(
           "replay %s: position error %.4g m, angle error %.4g deg, min f_n %.4g N, "
-          "phases %s\n",
-          name, x->position_error, x->angle_error * 180.0 / M_PI, x->min_f_n, x->phases.c_str());
+          "phases %s%s\n",
+          name, x->position_error, x->angle_error * 180.0 / M_PI, x->min_f_n, x->phases.c_str(),
+          departureText(*x).c_str());
     std::printf("optimised plan %s\n", r.accepted ? "accepted" : "rejected");
   }
   const planner::ReplaySummary& k = r.plan.planner_replay;
   if (k.ran)
     std::printf(
         "planner's plan, replay closed loop: position error %.4g m, angle error %.4g deg, "
-        "phases %s: %s\n",
+        "phases %s%s: %s\n",
         k.closed_loop.position_error, k.closed_loop.angle_error * 180.0 / M_PI,
-        k.closed_loop.phases.c_str(),
+        k.closed_loop.phases.c_str(), departureText(k.closed_loop).c_str(),
         k.accepted ? "passes the same check"
                    : "does NOT pass the same check (the tracking controller does not hold it)");
 }

@@ -81,6 +81,11 @@ struct ReplayResult {
   double min_f_n = 0.0;             ///< least normal force over the replay [N]
   std::string phases;               ///< phase sequence seen, runs merged, e.g. "PUPU"
   double max_tracking_error = 0.0;  ///< closed loop only: max joint error [rad or m]
+  /// \brief First step time t_n [s] at which the part is farther from the plan's own pose
+  ///        at t_n than the replay's position or angle tolerance; -1 when it never is.
+  double departure_time = -1.0;
+  /// \brief The plan's phase letter (C, P or U) at departure_time; empty when none.
+  std::string departure_phase;
 };
 
 /// \brief Closed- and open-loop replays of a plan and the verdict.

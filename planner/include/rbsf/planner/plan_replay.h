@@ -28,6 +28,10 @@
 ///   max_tracking_error  max over the steps of max_j |Theta_ref,j - Theta_j| at t_n, in
 ///                   the joints' own units (rad for theta, m for strokes; the numbers are
 ///                   compared as they are: 1 mm and 1 mrad weigh the same).
+///   departure_time  the first t_n (or the end) at which the part's pose differs from the
+///                   reference's by more than the position or the angle tolerance [s], -1
+///                   if it never does; departure_phase the plan's phase there. Where a
+///                   rejected plan first goes wrong: the final errors alone do not say.
 ///
 /// Acceptance (acceptReplay): the closed-loop replay ends within the position and angle
 /// tolerances of the goal (1 cm, 2 deg by default), has min_f_n >= 0, and its phase
