@@ -2,8 +2,9 @@
 /// \file
 /// \brief Phase-targeted inverse dynamics used by the control sampler: the tau that makes a
 ///        chosen phase hold with chosen mechanism or object accelerations, clipped to the
-///        cell's limits. (The planner's own compact version; the `phasectl` branch's
-///        phase_control.h replaces it when it lands.)
+///        cell's limits. (The planner's own compact version. rbsf/dynamics/phase_control.h
+///        is the thorough one, with cones and force margins, but it needs every finger
+///        touching, which the planner's states often are not.)
 ///
 /// Phase C target (every touching contact sticks, paper 2.2): base acceleration alpha and
 /// common stroke acceleration s. The object then moves rigidly with the base frame shifted
