@@ -5,9 +5,10 @@
 ///
 /// Paths are checked before the search (a missing or read-only directory is bad input
 /// and costs no planning time). At the end every text is formatted first and then each
-/// file is written to a temporary name and renamed (rbsf/dynamics/atomic_file.h): a file is
-/// complete or absent, and a plan holding a NaN writes none. With `reproducible`, wall-clock fields
-/// (planning_time) are left out, so the same seed gives byte-identical files.
+/// file is written to a temporary name and renamed (rbsf/dynamics/atomic_file.h): a file
+/// is complete or absent, and a plan holding a NaN writes none. With `reproducible`,
+/// wall-clock fields (planning_time) are left out, so the same seed gives byte-identical
+/// files.
 
 #include <string>
 #include <vector>

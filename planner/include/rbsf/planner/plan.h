@@ -22,13 +22,16 @@
 /// |                 | plans: the collocation knots): `t`, `q`, `v`, `tau` (held over |
 /// |                 | the step that ends here), `f_n` per contact, `phase` of that step |
 /// | `optimization`  | only when the optimiser ran: `status` (Ipopt's name of its |
-/// |                 | return status), `iterations`, `solve_time` [s] (not with --reproducible),
-/// `cost_before`, | |                 | `cost_after` (effort integral of tau^T W tau on the
-/// planner's / optimised plan), and | |                 | `message` (why it failed or was rejected)
-/// when not empty | | `replay`        | only when the plan was replayed (plan_replay.h):
-/// `closed_loop` | |                 | {`position_error` [m], `angle_error` [rad], `min_f_n` [N], |
-/// |                 | `phases`, `max_tracking_error` [rad or m]} and `open_loop` {the |
-/// |                 | same without `max_tracking_error`} |
+/// |                 | return status), `iterations`, `solve_time` [s] (not with |
+/// |                 | --reproducible), `cost_before`, `cost_after` (effort integral |
+/// |                 | of tau^T W tau on the planner's / optimised plan), and |
+/// |                 | `message` (why it failed or was rejected) when not empty |
+/// | `replay`        | only when the plan was replayed (plan_replay.h): `closed_loop` |
+/// |                 | {`position_error` [m], `angle_error` [rad], `min_f_n` [N], |
+/// |                 | `phases`, `max_tracking_error` [rad or m], and when the part |
+/// |                 | left the planned path `departure_time` [s] and |
+/// |                 | `departure_phase`} and `open_loop` {the same without |
+/// |                 | `max_tracking_error`} |
 /// | `accepted`      | with `optimization` or `replay`: true when the optimised plan |
 /// |                 | passed the replay (plan_replay.h) and is the one in the file |
 /// | `planner_replay` | only when an optimised plan was not accepted: the same two |
