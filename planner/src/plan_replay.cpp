@@ -67,7 +67,7 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
   std::vector<std::pair<Phase, double>> runs;
   PhaseCounts count{};  // of the current segment
   std::size_t segment = 0;
-  double segment_end = plan.segments.empty() ? 0.0 : plan.segments.front().duration;
+  double segment_end = plan.segments.front().duration;  // makeReference refused none
   auto closeSegment = [&] {  // a segment shorter than a step has no phase of its own
     if (count[0] + count[1] + count[2] == 0) return;
     runs.emplace_back(majorityPhase(count), plan.segments[segment].duration);
@@ -82,9 +82,7 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
     const double da = std::abs(state.q[layout::kPhi] - at.q[layout::kPhi]);
     if (!(dp <= settings.position_tolerance) || !(da <= settings.angle_tolerance)) {
       r.departure_time = t;
-      r.departure_phase = plan.segments.empty()
-                              ? std::string("U")
-                              : std::string(1, letter(plan.segments[segment].phase));
+      r.departure_phase = std::string(1, letter(plan.segments[segment].phase));
     }
   };
   for (long n = 0; n < steps; ++n) {
@@ -111,7 +109,7 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
     const Phase ph = report.phase == Phase::kUnsupported ? Phase::kU : report.phase;
     ++count[static_cast<int>(ph)];
   }
-  if (!plan.segments.empty()) closeSegment();
+  closeSegment();
   ref.sample(static_cast<double>(steps) * h, at);
   checkDeparture(static_cast<double>(steps) * h);
   r.max_tracking_error =
