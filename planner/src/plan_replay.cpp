@@ -127,6 +127,14 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
   return r;
 }
 
+std::string departureText(const ReplayResult& result) {
+  if (result.departure_time < 0.0) return "";
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "leaves the planned path at t = %.3f s (planned phase %s)",
+                result.departure_time, result.departure_phase.c_str());
+  return buf;
+}
+
 bool acceptReplay(const Plan& plan, const ReplayResult& closed, const ReplaySettings& settings,
                   std::string* reason) {
   std::string why;
@@ -147,11 +155,7 @@ bool acceptReplay(const Plan& plan, const ReplayResult& closed, const ReplaySett
   }
   const std::string planned = plannedPhases(plan, settings.min_phase_run);
   if (closed.phases != planned) why += "phases " + closed.phases + " != planned " + planned + "; ";
-  if (!why.empty() && closed.departure_time >= 0.0) {
-    std::snprintf(buf, sizeof buf, "leaves the planned path at t = %.3f s (planned phase %s); ",
-                  closed.departure_time, closed.departure_phase.c_str());
-    why += buf;
-  }
+  if (!why.empty() && closed.departure_time >= 0.0) why += departureText(closed) + "; ";
   if (!why.empty()) why.resize(why.size() - 2);
   if (reason) *reason = "closed-loop replay: " + (why.empty() ? std::string("accepted") : why);
   return why.empty();

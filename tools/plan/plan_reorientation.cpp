@@ -18,6 +18,7 @@
 
 #include "plan_outputs.h"
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/planner/plan_replay.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
@@ -38,13 +39,10 @@ struct Options {
   bool quiet = false, no_optimize = false, reproducible = false;
 };
 
-/// ", leaves the planned path at t = ... s (phase X)" when the replay did, else "".
-std::string departureText(const planner::ReplayResult& x) {
-  if (x.departure_time < 0.0) return "";
-  char buf[96];
-  std::snprintf(buf, sizeof buf, ", leaves the planned path at t = %.3f s (phase %s)",
-                x.departure_time, x.departure_phase.c_str());
-  return buf;
+/// ", " and planner::departureText when the replay left the planned path, else "".
+std::string departureSuffix(const planner::ReplayResult& x) {
+  const std::string text = planner::departureText(x);
+  return text.empty() ? text : ", " + text;
 }
 
 /// One line on the optimisation and one per replay.
@@ -60,7 +58,7 @@ void printRefineSummary(const trajopt::RefineOutcome& r) {
           "replay %s: position error %.4g m, angle error %.4g deg, min f_n %.4g N, "
           "phases %s%s\n",
           name, x->position_error, x->angle_error * 180.0 / M_PI, x->min_f_n, x->phases.c_str(),
-          departureText(*x).c_str());
+          departureSuffix(*x).c_str());
     std::printf("optimised plan %s\n", r.accepted ? "accepted" : "rejected");
   }
   const planner::ReplaySummary& k = r.plan.planner_replay;
@@ -69,7 +67,7 @@ void printRefineSummary(const trajopt::RefineOutcome& r) {
         "planner's plan, replay closed loop: position error %.4g m, angle error %.4g deg, "
         "phases %s%s: %s\n",
         k.closed_loop.position_error, k.closed_loop.angle_error * 180.0 / M_PI,
-        k.closed_loop.phases.c_str(), departureText(k.closed_loop).c_str(),
+        k.closed_loop.phases.c_str(), departureSuffix(k.closed_loop).c_str(),
         k.accepted ? "passes the same check"
                    : "does NOT pass the same check (the tracking controller does not hold it)");
 }

@@ -74,6 +74,11 @@ ReplayResult replayPlan(const Simulator& simulator, const Plan& plan,
 bool acceptReplay(const Plan& plan, const ReplayResult& closed_loop, const ReplaySettings& settings,
                   std::string* reason = nullptr);
 
+/// \brief "leaves the planned path at t = <t> s (planned phase <X>)" for a replay that left
+///        it (departure_time >= 0), "" otherwise: the one wording of the rejection reason
+///        and of plan-reorientation's replay lines.
+std::string departureText(const ReplayResult& result);
+
 /// \brief Both replays and the verdict (the tracking controller tuned at q0).
 ReplaySummary verifyPlan(const Simulator& simulator, const Plan& plan,
                          const ReplaySettings& settings, std::string* reason = nullptr);
