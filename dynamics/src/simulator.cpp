@@ -294,6 +294,10 @@ void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws,
       ContactStepReport& c = report->contacts[i];
       c.mode = mode;
       c.f_n = r < 0 ? 0.0 : s.lambda[r] / h;
+      // The solvers keep lambda_n >= 0 up to rounding: a closed contact without load can
+      // come out at -3e-35 N, which would read as pulling wherever f_n >= 0 is checked.
+      // Rounding (under a nanonewton) reads 0; anything more negative is shown as it is.
+      if (c.f_n < 0.0 && c.f_n > -1e-9) c.f_n = 0.0;
       c.f_t = r < 0 ? 0.0 : s.lambda[nu + r] / h;
       c.gap = d.contacts[i].gap;
       c.slip = slip;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
 #include "rbsf/dynamics/errors.h"
@@ -61,6 +62,56 @@ TEST(Simulator, HeldPartStaysPutForSixtySeconds) {
     EXPECT_NEAR(rep.contacts[i].f_n, hold.fn[i], 1e-6 * hold.fn.norm()) << i;
     EXPECT_NEAR(rep.contacts[i].f_t, hold.ft[i], 1e-6 * hold.fn.norm()) << i;
   }
+}
+
+TEST(Simulator, ReportedNormalForcesNeverPull) {
+  // "Contacts never pull" is checked on reports (the replay's min f_n >= 0), so a closed
+  // contact that carries no load must read 0, not the solvers' rounding: the default part
+  // resting on unpowered fingers (tau = 0) read -3.3e-35 N at step 5. Then every report of
+  // a random drive, on every shape, is >= 0, and 0 when separated.
+  {
+    const RbsfModel model(loadCell(std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml"));
+    const Simulator sim(model);
+    SimulatorWorkspace ws(3);
+    StepReport rep;
+    SimState s(restingConfiguration(model, Pose{0.1, 0.40, 0.0}, 0.0), VecQ::Zero(7));
+    for (int k = 0; k < 50; ++k) {
+      sim.step(s, VecU::Zero(4), ws, &rep);
+      for (int i = 0; i < 3; ++i) ASSERT_GE(rep.contacts[i].f_n, 0.0) << k << " " << i;
+    }
+  }
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int closed = 0;
+  for (ShapeKind kind : {ShapeKind::kEllipse, ShapeKind::kCircle, ShapeKind::kSuperellipse}) {
+    const RbsfModel model(test::makeCell(kind, 3));
+    const Simulator sim(model);
+    SimulatorWorkspace ws(3);
+    StepReport rep;
+    for (int trial = 0; trial < 20; ++trial) {
+      const VecQ q0 = test::randomContactState(model, rng);
+      const HoldingSolution hold = test::holdingAt(model, q0);
+      if (!hold.feasible) continue;
+      SimState s(q0, VecQ::Zero(7));
+      VecU tau = hold.tau;
+      for (int k = 0; k < 300; ++k) {
+        if (k % 20 == 0)
+          for (int j = 0; j < tau.size(); ++j) tau[j] = hold.tau[j] * (1.0 + 0.3 * u(rng));
+        tau[kTauTheta] += -2e3 * s.q[kTheta] - 300.0 * s.v[kTheta];
+        sim.step(s, tau, ws, &rep);
+        for (int i = 0; i < 3; ++i) {
+          const ContactStepReport& c = rep.contacts[i];
+          if (c.mode == ContactMode::kSeparated) {
+            EXPECT_EQ(c.f_n, 0.0);
+          } else {
+            ++closed;
+            ASSERT_GE(c.f_n, 0.0) << "trial " << trial << " step " << k << " contact " << i;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(closed, 10000);
 }
 
 TEST(Simulator, PartTurnsWithTheBaseThroughoutPhaseC) {
