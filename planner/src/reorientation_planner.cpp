@@ -138,7 +138,7 @@ PlannerSetup ReorientationPlanner::setup(const Problem& problem) const {
   auto si = std::make_shared<oc::SpaceInformation>(out.space, cspace);
   out.checker = std::make_shared<SupportValidityChecker>(si, model_, s.validity);
   si->setStateValidityChecker(out.checker);
-  out.propagator = std::make_shared<SimPropagator>(si, simulator_, *out.space);
+  out.propagator = std::make_shared<SimPropagator>(si, simulator_, *out.space, s.decisive_modes);
   si->setStatePropagator(out.propagator);
   si->setPropagationStepSize(s.steps_per_control * dt);
   si->setMinMaxControlDuration(s.min_control_steps, s.max_control_steps);

@@ -61,6 +61,7 @@ void SimStateSpace::copyState(ob::State* destination, const ob::State* source) c
   const auto* s = static_cast<const StateType*>(source);
   std::copy(s->values, s->values + dimension_, d->values);
   *d->sim = *s->sim;
+  d->decisive = s->decisive;
 }
 
 void SimStateSpace::fromSim(const SimState& sim, ob::State* state) const {
@@ -71,6 +72,7 @@ void SimStateSpace::fromSim(const SimState& sim, ob::State* state) const {
     s->values[n + k] = sim.v[k];
   }
   *s->sim = sim;
+  s->decisive = true;
 }
 
 VecQ SimStateSpace::q(const ob::State* state) const {

@@ -34,6 +34,7 @@ bool SupportValidityChecker::supported(const VecQ& q, const VecC& hint) const {
 bool SupportValidityChecker::isValid(const ompl::base::State* state) const {
   const auto* s = static_cast<const SimStateSpace::StateType*>(state);
   const SimState& sim = *s->sim;
+  if (!s->decisive) return false;
   if (!sim.q.allFinite() || !sim.v.allFinite()) return false;
   if (!si_->satisfiesBounds(state)) return false;
   return supported(sim.q, sim.xi_hint);

@@ -396,6 +396,29 @@ TEST(PlanReorientation, OptimisesByDefaultAndReportsTheReplay) {
   }
 }
 
+TEST(PlanReorientation, DecisiveModesMakeTheNinetyDegreePlanRepeatableUnderTracking) {
+  // A 20-iteration optimisation does not converge, so the file keeps the planner's plan
+  // and its own closed-loop replay (planner_replay). With the decisive-modes rule that plan
+  // passes; --no-decisive-modes plans the same seed the old way, and the cell's tracking
+  // drops the part.
+  auto plan = [&](const std::string& extra) {
+    const std::string out = writeTemp("plan90" + extra + ".json", "");
+    const Result r = run(kPlan + " --cell " + kCells +
+                         "default.yaml --start 0.1,0.40,0 --goal=-0.1,0.40,-90deg --seed 2"
+                         " --time-limit 120 --quiet --knots 30 --optimize-iterations 20 --out " +
+                         out + " " + extra);
+    EXPECT_EQ(r.status, 4) << r.err;
+    return nlohmann::json::parse(slurp(out));
+  };
+  const auto decisive = plan("");
+  ASSERT_TRUE(decisive.contains("planner_replay"));
+  EXPECT_TRUE(decisive["planner_replay"]["accepted"].get<bool>());
+  EXPECT_LE(decisive["planner_replay"]["closed_loop"]["position_error"].get<double>(), 0.01);
+  const auto lenient = plan("--no-decisive-modes");
+  ASSERT_TRUE(lenient.contains("planner_replay"));
+  EXPECT_FALSE(lenient["planner_replay"]["accepted"].get<bool>());
+}
+
 TEST(PlanReorientation, TimeLimitWithoutExactPlanExitsThree) {
   const std::string out = writeTemp("approx.json", "");
   const Result r = run(kPlan + " --cell " + kCells +

@@ -36,7 +36,7 @@ struct Options {
                                  seed = "1", out, csv, svg, report, svg_still = "0", knots = "100",
                                  optimize_time_limit = "30", optimize_iterations = "500",
                                  goal_angle = "nearest";
-  bool quiet = false, no_optimize = false, reproducible = false;
+  bool quiet = false, no_optimize = false, reproducible = false, no_decisive_modes = false;
 };
 
 /// ", " and planner::departureText when the replay left the planned path, else "".
@@ -111,6 +111,9 @@ int run(int argc, char** argv) {
                "leave wall-clock fields (planning_time) out of the files: the same seed gives "
                "byte-identical files");
   app.add_flag("--quiet", o.quiet, "no progress line");
+  app.add_flag("--no-decisive-modes", o.no_decisive_modes,
+               "let contacts change mode anywhere within a held torque (plans a tracking cell "
+               "often cannot repeat; see README)");
   app.add_flag("--no-optimize", o.no_optimize, "write the planner's plan without optimising it");
   app.add_option("--knots", o.knots, "collocation intervals of the optimiser (default 100)");
   app.add_option("--optimize-time-limit", o.optimize_time_limit,
@@ -123,6 +126,7 @@ int run(int argc, char** argv) {
 
   planner::PlannerSettings settings;
   settings.planner = o.planner;
+  settings.decisive_modes.enabled = !o.no_decisive_modes;
   settings.time_limit = parseNumber(o.time_limit, "--time-limit");
   if (settings.time_limit <= 0.0) throw InputError("--time-limit: must be positive");
   const double seed = parseNumber(o.seed, "--seed");

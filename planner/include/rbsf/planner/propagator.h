@@ -8,6 +8,19 @@
 /// propagations are the same computation as one long simulation. The result's SimState and
 /// vector are set together. Counts simulator steps and propagate() calls (single-threaded
 /// planners; the counters are plain integers).
+///
+/// Decisive contact modes (DecisiveModes, on by default). A plan is run by a cell that
+/// tracks the joints (tracking_controller.h), never exactly its open-loop torques. Where
+/// the plan has a contact creep from sticking into sliding, stick at the edge of its cone,
+/// or change mode in the middle of a held torque, the tracking's corrections of a few
+/// micrometres decide that contact's mode differently, and the part leaves the planned
+/// path (BENCHMARKS.md "The planner's plans under joint tracking": a one-phase pivot fails
+/// within 0.1 s with a 10 um reference error). So a propagation step counts only if, after
+/// its first `settle_steps` simulator steps (where a new torque may switch modes at once),
+///   - every contact keeps the mode (stick, slide, separated) it has then, and
+///   - every sticking contact keeps |f_t| <= cone_margin mu_s f_n.
+/// A step that breaks either marks its result state (StateType::decisive = false), which
+/// the validity checker refuses, so OMPL's propagateWhileValid ends the control before it.
 
 #include <cstdint>
 
@@ -18,11 +31,19 @@
 
 namespace rbsf::planner {
 
+/// \brief The decisive-modes rule of the file comment.
+struct DecisiveModes {
+  bool enabled = true;       ///< false: every propagation step counts
+  int settle_steps = 2;      ///< simulator steps in which a propagation step may switch modes
+  double cone_margin = 0.9;  ///< sticking contacts keep |f_t| <= cone_margin mu_s f_n after
+};
+
 /// \brief OMPL StatePropagator stepping the simulator.
 class SimPropagator : public ompl::control::StatePropagator {
  public:
+  /// \throws InputError for settle_steps < 0 or a cone_margin outside (0, 1].
   SimPropagator(const ompl::control::SpaceInformationPtr& si, const Simulator& simulator,
-                const SimStateSpace& space);
+                const SimStateSpace& space, const DecisiveModes& rule = {});
 
   void propagate(const ompl::base::State* state, const ompl::control::Control* control,
                  double duration, ompl::base::State* result) const override;
@@ -32,14 +53,19 @@ class SimPropagator : public ompl::control::StatePropagator {
   std::uint64_t propagations() const { return propagations_; }
   /// \brief Number of simulator steps so far.
   std::uint64_t steps() const { return steps_; }
+  /// \brief Number of propagation steps refused by the decisive-modes rule so far.
+  std::uint64_t indecisive() const { return indecisive_; }
 
  private:
   const Simulator& simulator_;
   const SimStateSpace& space_;
   int m_;
+  DecisiveModes rule_;
   mutable SimulatorWorkspace ws_;
+  mutable StepReport report_;
   mutable std::uint64_t propagations_ = 0;
   mutable std::uint64_t steps_ = 0;
+  mutable std::uint64_t indecisive_ = 0;
 };
 
 }  // namespace rbsf::planner

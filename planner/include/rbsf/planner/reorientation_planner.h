@@ -8,7 +8,8 @@
 ///   - control space: tau in R^(m+1) within the cell's limits; propagation step
 ///     k = steps_per_control simulator steps, control durations min_control_steps ..
 ///     max_control_steps propagation steps; controls from PhaseControlSampler;
-///   - propagator SimPropagator, validity SupportValidityChecker, goal PoseGoal;
+///   - propagator SimPropagator (with the decisive-modes rule, propagator.h), validity
+///     SupportValidityChecker (which refuses what that rule marks), goal PoseGoal;
 ///   - planner by name (plannerNames()): KPIECE1 (default), RRT, SST, EST, PDST,
 ///     single-threaded; ompl::RNG::setSeed(seed) before anything is created, so the same
 ///     seed and settings give the same plan when the search ends by reaching the goal.
@@ -29,6 +30,7 @@
 #include "rbsf/planner/control_sampler.h"
 #include "rbsf/planner/plan.h"
 #include "rbsf/planner/planner_setup.h"
+#include "rbsf/planner/propagator.h"
 #include "rbsf/planner/state_space.h"
 #include "rbsf/planner/validity.h"
 
@@ -57,6 +59,7 @@ struct PlannerSettings {
   double goal_bias = 0.05;
   SpeedBounds speed;
   ValiditySettings validity;
+  DecisiveModes decisive_modes;  ///< propagation steps a tracking cell repeats (propagator.h)
   SamplerSettings sampler;
   std::function<void(const Progress&)> progress;  ///< called about once per second
   /// \brief When set and it becomes true (another thread, a signal handler), the search

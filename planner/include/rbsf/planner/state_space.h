@@ -37,6 +37,9 @@ class SimStateSpace : public ompl::base::RealVectorStateSpace {
   class StateType : public ompl::base::RealVectorStateSpace::StateType {
    public:
     SimState* sim = nullptr;  ///< owned; allocated with the state
+    /// \brief false: the propagation step into this state broke the decisive-modes rule
+    ///        (propagator.h); the validity checker refuses it.
+    bool decisive = true;
   };
 
   SimStateSpace(const RbsfModel& model, const SpeedBounds& speed);
