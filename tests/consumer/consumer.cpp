@@ -1,5 +1,5 @@
 // Uses the installed rbsf package as a cell controller would: loads a cell into the
-// controller facade, plans a short turn (15 degrees, the planner tests' seed) on its
+// controller facade, plans a short turn (15 degrees, the optimiser tests' seed) on its
 // worker thread while this thread polls, and samples the published plan. Also links
 // rbsf::trajopt (refines the plan when it can). Exit status 0 when the plan is exact and
 // the facade's samples at the plan's knots equal the plan's own q.
@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
     rbsf::controller::ReorientationRequest request;
     request.problem.start = {0.1, 0.40, 0.0};
     request.problem.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
-    request.planner.seed = 7;
+    request.planner.seed = 5;
     request.planner.time_limit = 60.0;
     request.optimize = true;
     request.optimizer.knots = 30;  // small: converges in seconds (as the CLI test's)
