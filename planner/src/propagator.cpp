@@ -1,5 +1,6 @@
 #include "rbsf/planner/propagator.h"
 
+#include <array>
 #include <cmath>
 #include <string>
 

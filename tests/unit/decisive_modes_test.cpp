@@ -3,9 +3,9 @@
 // propagation step, and the plans it gives a tracking cell can repeat.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <string>
-#include <vector>
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
