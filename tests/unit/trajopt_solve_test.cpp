@@ -93,7 +93,8 @@ TEST_F(TrajoptSolve, SolutionIsPhysical) {
 
 TEST_F(TrajoptSolve, DynamicsAndConesHoldByRbsfModel) {
   // Independent of the NLP's own code: RbsfModel's contact frames (closest points), mass
-  // matrix and bias give the trapezoidal residual of M dv/dt = u + G1 f_n + T f_t - Q.
+  // matrix and bias give the trapezoidal residual of M dv/dt = u + G1 f_n + T f_t - Q, with
+  // the forces held over each interval (sample k + 1 reports those of interval k).
   ASSERT_TRUE(result_->success);
   const RbsfModel& model = test::defaultModel();
   const planner::Plan& out = result_->plan;
@@ -102,40 +103,42 @@ TEST_F(TrajoptSolve, DynamicsAndConesHoldByRbsfModel) {
   const double weight = model.cell().object.mass * model.cell().gravity;
   const double mu = testSettings().cone_margin * model.cell().friction.mu_static;
   ModelData data(m);
-  auto rhs = [&](std::size_t k, VecQ& r, MatQQ& M) {
-    const planner::PlanSample& s = out.samples[k];
+  // r at knot e with the forces of interval k (held); checks contacts and cones on the way.
+  auto rhs = [&](std::size_t e, std::size_t k, VecQ& r, MatQQ& M) {
+    const planner::PlanSample& s = out.samples[e];
+    const VecC& f_n = out.samples[k + 1].f_n;
+    const VecC& f_t = result_->f_t[k + 1];
     model.updateContacts(s.q, data);
     VecQ u, Q;
     model.generalizedInput(s.tau, u);
     model.bias(s.q, s.v, Q);
-    r = u + data.G1 * s.f_n + data.T * result_->f_t[k] - Q;
+    r = u + data.G1 * f_n + data.T * f_t - Q;
     model.massMatrix(s.q, M);
     for (int i = 0; i < m; ++i) {
-      const ContactRole role = p.schedule().knotRole(static_cast<int>(k), i);
-      if (role != ContactRole::kOff) {
-        EXPECT_LT(std::abs(data.contacts[i].gap), 1e-6) << "knot " << k << " finger " << i;
-      } else {
-        EXPECT_GT(data.contacts[i].gap, -1e-6) << "knot " << k << " finger " << i;
-        EXPECT_EQ(s.f_n[i], 0.0);
+      if (p.schedule().knotRole(static_cast<int>(e), i) != ContactRole::kOff)
+        EXPECT_LT(std::abs(data.contacts[i].gap), 1e-6) << "knot " << e << " finger " << i;
+      else
+        EXPECT_GT(data.contacts[i].gap, -1e-6) << "knot " << e << " finger " << i;
+      const ContactRole role = p.schedule().role(static_cast<int>(k), i);
+      if (role == ContactRole::kOff) {
+        EXPECT_EQ(f_n[i], 0.0) << "interval " << k;
       }
       if (role == ContactRole::kStick)
-        EXPECT_LE(std::abs(result_->f_t[k][i]), mu * s.f_n[i] + 1e-6);
+        EXPECT_LE(std::abs(f_t[i]), mu * f_n[i] + 1e-6) << "interval " << k;
       else
-        EXPECT_EQ(result_->f_t[k][i], 0.0);
+        EXPECT_EQ(f_t[i], 0.0) << "interval " << k;
     }
   };
   double worst = 0.0;
   VecQ r0, r1;
   MatQQ M0, M1;
-  rhs(0, r0, M0);
   for (std::size_t k = 0; k + 1 < out.samples.size(); ++k) {
-    rhs(k + 1, r1, M1);
+    rhs(k, k, r0, M0);
+    rhs(k + 1, k, r1, M1);
     const double h = out.samples[k + 1].t - out.samples[k].t;
     const VecQ res =
         0.5 * (M0 + M1) * (out.samples[k + 1].v - out.samples[k].v) / h - 0.5 * (r0 + r1);
     worst = std::max(worst, res.cwiseAbs().maxCoeff());
-    r0 = r1;
-    M0 = M1;
   }
   EXPECT_LT(worst, 1e-4 * weight);
 }

@@ -80,10 +80,16 @@ void CollocationConstraint::jacobian(const ConstVectorRef& z, double* values) co
   }
 }
 
-std::vector<int> CollocationConstraint::knotVariables(int kk) const {
+std::vector<int> CollocationConstraint::intervalVariables(int k) const {
+  // T_j's partners: every variable of the interval's two knots that r or D_q touch, i.e.
+  // all but x and y, and but knot k+1's forces (the interval holds knot k's).
   std::vector<int> cols;
-  for (int c = 0; c < layout_.knotSize(); ++c)
-    if (c != layout::kX && c != layout::kY) cols.push_back(layout_.knot(kk) + c);
+  for (int e = 0; e < 2; ++e)
+    for (int c = 0; c < layout_.knotSize(); ++c) {
+      const bool force = c >= layout_.localFn() && c < layout_.localXi();
+      if (c != layout::kX && c != layout::kY && !(e == 1 && force))
+        cols.push_back(layout_.knot(k + e) + c);
+    }
   return cols;
 }
 
@@ -93,9 +99,9 @@ void CollocationConstraint::hessianStructure(HessianPattern& p) {
   for (int k = 0; k < layout_.intervals(); ++k) {
     for (int e = 0; e < 2; ++e) {
       const int kk = k + e, oq = layout_.q(kk), ov = layout_.v(kk);
-      for (int i = 0; i < m; ++i) {  // contact wrenches
-        const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
-                           layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
+      for (int i = 0; i < m; ++i) {  // contact wrenches, forces held from knot k
+        const int c6[6] = {oq + layout::kPhi, oq + kTheta,       oq + stroke(i),
+                           layout_.fn(k) + i, layout_.ft(k) + i, layout_.xi(kk) + i};
         for (int a = 0; a < 6; ++a)
           for (int b = 0; b <= a; ++b) hess_slots_.push_back(p.slot(c6[a], c6[b]));
       }
@@ -112,23 +118,23 @@ void CollocationConstraint::hessianStructure(HessianPattern& p) {
         hess_slots_.push_back(p.slot(oq + stroke(i), layout_.v(k) + kTheta));
         hess_slots_.push_back(p.slot(oq + stroke(i), layout_.v(k + 1) + kTheta));
       }
-      const int T = layout_.duration(schedule_.run_of_interval[k]);
-      for (int c : knotVariables(kk)) hess_slots_.push_back(p.slot(T, c));
     }
+    const int T = layout_.duration(schedule_.run_of_interval[k]);
+    for (int c : intervalVariables(k)) hess_slots_.push_back(p.slot(T, c));
   }
 }
 
-void CollocationConstraint::knotHessian(const ConstVectorRef& z, int kk, const double* lv,
+void CollocationConstraint::knotHessian(const ConstVectorRef& z, int k, int kk, const double* lv,
                                         double scale, const int*& slot, double* values,
                                         Eigen::VectorXd& grad) const {
   const Cell& cell = model_.cell();
   const int m = model_.numFingers(), oq = layout_.q(kk), ov = layout_.v(kk);
-  const int o = layout_.knot(kk);
-  grad.setZero(layout_.knotSize());
+  const int o = layout_.knot(k);   // grad covers knots k and k+1
+  const int go = layout_.knot(kk) - o;  // knot kk's block inside grad
   // Contact wrenches: lambda_v^T (G1_i f_n + T_i f_t) by nested AutoDiff.
   for (int i = 0; i < m; ++i) {
-    const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
-                       layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
+    const int c6[6] = {oq + layout::kPhi, oq + kTheta,       oq + stroke(i),
+                       layout_.fn(k) + i, layout_.ft(k) + i, layout_.xi(kk) + i};
     double x[6];
     for (int a = 0; a < 6; ++a) x[a] = z[c6[a]];
     AD6x2 v[6], w[5];
@@ -162,22 +168,23 @@ void CollocationConstraint::knotHessian(const ConstVectorRef& z, int kk, const d
     P_tdtd -= 2.0 * li * f.mass * L;
     dP_t += lt * f.mass * g0 * (-f.r * st - L * ct) - li * f.mass * g0 * st;
     dP_td += 2.0 * lt * f.mass * L * ld - 2.0 * li * f.mass * L * thd;
-    grad[stroke(i)] -= lt * (2.0 * f.mass * ld * thd - f.mass * g0 * st) - li * f.mass * thd * thd;
-    grad[layout_.localV() + stroke(i)] -= 2.0 * lt * f.mass * L * thd;
+    grad[go + stroke(i)] -=
+        lt * (2.0 * f.mass * ld * thd - f.mass * g0 * st) - li * f.mass * thd * thd;
+    grad[go + layout_.localV() + stroke(i)] -= 2.0 * lt * f.mass * L * thd;
   }
   values[*slot++] -= scale * P_tdtd;
-  grad[kTheta] -= dP_t;
-  grad[layout_.localV() + kTheta] -= dP_td;
+  grad[go + kTheta] -= dP_t;
+  grad[go + layout_.localV() + kTheta] -= dP_td;
   for (int j = 0; j < layout::controlDim(m); ++j)
-    grad[layout_.localTau() + j] += lv[layout::inputToConfig(j)];
+    grad[go + layout_.localTau() + j] += lv[layout::inputToConfig(j)];
 }
 
 void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* lambda,
                                        double* values) const {
   const Cell& cell = model_.cell();
-  const int m = model_.numFingers();
+  const int m = model_.numFingers(), ks = layout_.knotSize();
   const int* slot = hess_slots_.data();
-  Eigen::VectorXd grad;
+  Eigen::VectorXd grad(2 * ks);
   for (int k = 0; k < layout_.intervals(); ++k) {
     const int j = schedule_.run_of_interval[k];
     const int N = schedule_.runs[j].intervals;
@@ -187,9 +194,10 @@ void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* la
     double lv[kMaxConfig];  // D_v's multipliers with its weight scaling folded in
     for (int a = 0; a < n_; ++a) lv[a] = lq[n_ + a] * inv_weight_;
     const double dv_theta = z[layout_.v(k + 1) + kTheta] - z[layout_.v(k) + kTheta];
+    grad.setZero();
     for (int e = 0; e < 2; ++e) {
       const int kk = k + e, oq = layout_.q(kk);
-      knotHessian(z, kk, lv, -0.5 * h * inv_hbar, slot, values, grad);
+      knotHessian(z, k, kk, lv, -0.5 * h * inv_hbar, slot, values, grad);
       for (int i = 0; i < m; ++i) {
         const FingerParams& f = cell.fingers[i];
         const double L = z[oq + stroke(i)] + f.com_offset;
@@ -197,12 +205,12 @@ void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* la
         values[*slot++] -= inv_hbar * lv[kTheta] * f.mass * L;
         values[*slot++] += inv_hbar * lv[kTheta] * f.mass * L;
       }
-      // d^2 / dT dz: -1/(2 N hbar) (grad lambda_v^T r_kk + lambda_q on v_kk).
-      for (int a = 0; a < n_; ++a) grad[layout_.localV() + a] += lq[a];
-      const double cT = -0.5 * inv_hbar / N;
-      for (int c = 0; c < layout_.knotSize(); ++c)
-        if (c != layout::kX && c != layout::kY) values[*slot++] += cT * grad[c];
+      for (int a = 0; a < n_; ++a) grad[e * ks + layout_.localV() + a] += lq[a];
     }
+    // d^2 / dT dz: -1/(2 N hbar) (grad of lambda_v^T (r_k + r_k+1) + lambda_q on v_k, v_k+1).
+    const double cT = -0.5 * inv_hbar / N;
+    const int o = layout_.knot(k);
+    for (int c : intervalVariables(k)) values[*slot++] += cT * grad[c - o];
   }
 }
 

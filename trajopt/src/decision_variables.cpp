@@ -37,7 +37,8 @@ void DecisionVariables::bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) c
       upper[layout_.q(k) + layout::stroke(i)] = f.stroke_max;
       lower[layout_.tau(k) + layout::fingerForce(i)] = -f.force_limit;
       upper[layout_.tau(k) + layout::fingerForce(i)] = f.force_limit;
-      const ContactRole role = schedule_.knotRole(k, i);
+      // Forces are held over interval k; the last knot's act on no interval.
+      const ContactRole role = k < K - 1 ? schedule_.forceRole(k, i) : ContactRole::kOff;
       lower[layout_.fn(k) + i] = 0.0;
       upper[layout_.fn(k) + i] = role == ContactRole::kOff ? 0.0 : kInfinity;
       if (role != ContactRole::kStick) lower[layout_.ft(k) + i] = upper[layout_.ft(k) + i] = 0.0;
@@ -104,7 +105,7 @@ Eigen::VectorXd DecisionVariables::initialGuess() const {
     const VecQ q = (1.0 - w) * a.q + w * b.q;
     z.segment(layout_.q(k), n) = q;
     z.segment(layout_.v(k), n) = (1.0 - w) * a.v + w * b.v;
-    z.segment(layout_.fn(k), m) = (1.0 - w) * a.f_n + w * b.f_n;
+    z.segment(layout_.fn(k), m) = (1.0 - w) * a.f_n + w * b.f_n;  // held from t on
     // tau: the segment that is held from t on.
     double seg_start = 0.0;
     const planner::PlanSegment* seg = &plan_.segments.back();

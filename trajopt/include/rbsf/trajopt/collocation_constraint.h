@@ -18,8 +18,9 @@ namespace rbsf::trajopt {
 ///   D_v = (1/2 (M(q_k) + M(q_{k+1})) (v_{k+1} - v_k) - h/2 (r_k + r_{k+1})) / (hbar W_o)
 ///   (D_v in units of the object's weight W_o = m_o max(g0, 1 m/s^2) [N, N m per N]: rows
 ///   of order one, so a tolerance or a derivative check means the same on every row)
-/// with r = u(tau) + sum_i [G_i f_i ; -J_i^T f_i] - Q(q, v) and
-/// f_i = f_n,i n_i(xi_i) + f_t,i t_i(xi_i) in the world frame (knotRhs in ad_dynamics.h).
+/// with r_e = u(tau_e) + sum_i [G_i f_i ; -J_i^T f_i] - Q(q_e, v_e) at knots e = k, k+1 and
+/// f_i = f_n,k,i n_i(xi_e,i) + f_t,k,i t_i(xi_e,i) in the world frame (knotRhs in
+/// ad_dynamics.h): the forces of knot k are held over the interval (decision_layout.h).
 /// (Multiplied by h rather than divided, so T_j enters linearly.)
 ///
 /// Jacobian: forward-mode AutoDiff over the interval's two knot blocks and T_j. Its
@@ -27,8 +28,8 @@ namespace rbsf::trajopt {
 /// same for every interval, found once in the constructor.
 ///
 /// Hessian of lambda^T (D_q; D_v), exact: per knot, -h/(2 hbar) times the Hessian of
-/// lambda_v^T r (each contact's wrench by nested AutoDiff over (phi, theta, l_i, f_n, f_t,
-/// xi); the bias Q in closed form); the mass-matrix term through M_theta,theta's
+/// lambda_v^T r (each contact's wrench by nested AutoDiff over (phi, theta, l_i of that
+/// knot, f_n, f_t of knot k, xi of that knot); the bias Q in closed form); the mass-matrix term through M_theta,theta's
 /// sum m_i L_i^2; and the T_j row -1/(2 N_j hbar) (lambda_q on v, grad lambda_v^T r).
 class CollocationConstraint final : public ConstraintSet {
  public:
@@ -52,11 +53,12 @@ class CollocationConstraint final : public ConstraintSet {
  private:
   int localSize() const { return 2 * layout_.knotSize() + 1; }
   void gather(const ConstVectorRef& z, int k, double* local) const;
-  /// \brief Accumulate the Hessian of lambda_v^T r at knot kk scaled by `scale` into slots
-  ///        starting at *slot; grad receives the gradient of lambda_v^T r over the knot block.
-  void knotHessian(const ConstVectorRef& z, int kk, const double* lambda_v, double scale,
+  /// \brief Accumulate the Hessian of lambda_v^T r at knot kk (k or k + 1) of interval k,
+  ///        with the forces of knot k, scaled by `scale` into slots starting at *slot; grad
+  ///        (over knots k and k + 1) accumulates the gradient of lambda_v^T r.
+  void knotHessian(const ConstVectorRef& z, int k, int kk, const double* lambda_v, double scale,
                    const int*& slot, double* values, Eigen::VectorXd& grad) const;
-  std::vector<int> knotVariables(int kk) const;  ///< T_j's partners at knot kk
+  std::vector<int> intervalVariables(int k) const;  ///< T_j's partners on interval k
 
   const RbsfModel& model_;
   DecisionLayout layout_;
@@ -78,7 +80,7 @@ void CollocationConstraint::defect(const S* local, int k, ConfigVector<S>& out) 
   const S h = local[2 * ks] / static_cast<double>(schedule_.runs[j].intervals);
   ConfigVector<S> r0, r1, dv(n_), Mdv0, Mdv1;
   knotRhs<S>(model_, layout_, local, 0, r0);
-  knotRhs<S>(model_, layout_, local, ks, r1);
+  knotRhs<S>(model_, layout_, local, ks, r1, 0);
   const int ov = layout_.localV();
   for (int a = 0; a < n_; ++a) dv[a] = local[ks + ov + a] - local[ov + a];
   massTimes<S>(model_.cell(), local, 0, dv, Mdv0);

@@ -10,12 +10,17 @@
 /// | q(k)            | m + 4 | q_k      | configuration, order of state_layout.h      | m, rad    |
 /// | v(k)            | m + 4 | v_k      | velocity dq/dt                              | m/s, rad/s|
 /// | tau(k)          | m + 1 | tau_k    | input, order of state_layout.h              | N m, N    |
-/// | fn(k)           | m     | f_n,k    | normal force of each finger on the object   | N         |
-/// | ft(k)           | m     | f_t,k    | tangential force along t_i (0 unless sticking) | N      |
+/// | fn(k)           | m     | f_n,k    | normal force of each finger, on interval k  | N         |
+/// | ft(k)           | m     | f_t,k    | force along t_i (0 unless sticking), ditto  | N         |
 /// | xi(k)           | m     | xi_k     | boundary parameter of each finger's foot point | -      |
 /// | duration(j)     | 1     | T_j      | duration of phase run j (after the knots)   | s         |
 /// Forces act on the object at the foot point x_o + R(phi) c(xi_i), world frame:
 /// f_i = f_n,i n_i + f_t,i t_i (MODEL.md "Contact kinematics"; n_i inward).
+/// The force magnitudes of knot k are held over interval k (zero-order hold, like the
+/// simulator's impulses over a step); their directions follow the foot points at both
+/// ends. Knot N's forces act on no interval and are fixed at 0 (sample N reports
+/// interval N-1's). Forces per knot that the trapezoidal rule only averages zigzag: the
+/// cones would be checked on forces the simulator never applies.
 /// xi is not wrapped: it moves continuously over the plan (the initial guess unwraps it).
 
 #include "rbsf/dynamics/state_layout.h"

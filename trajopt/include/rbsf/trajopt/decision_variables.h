@@ -16,8 +16,9 @@ struct OptimizerSettings;
 /// \brief The variables' side of the NLP.
 ///
 /// Bounds: tau within the cell's torque and force limits; theta and strokes within their
-/// limits; f_n >= 0 where the contact is on at the knot (Schedule::knotRole), 0 where off;
-/// f_t free where it sticks, 0 otherwise (mu_k = 0, MODEL.md); q_0 = plan.q0, v_0 = 0
+/// limits; f_n >= 0 where the contact is on over the interval the knot's forces are held
+/// on (Schedule::forceRole), 0 where off; f_t free where it sticks, 0 otherwise (mu_k = 0,
+/// MODEL.md); the last knot's forces, held on no interval, fixed at 0; q_0 = plan.q0, v_0 = 0
 /// (start at rest); object pose of q_N = the goal (x, y, phi; phi taken within pi of the
 /// plan's final angle), v_N = 0 (at rest at the end); T_j within
 /// [duration_min_scale, duration_max_scale] x the planned duration of run j.
