@@ -5,9 +5,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/trajopt/plan_optimizer.h"
@@ -141,6 +143,30 @@ TEST_F(TrajoptSolve, DynamicsAndConesHoldByRbsfModel) {
     worst = std::max(worst, res.cwiseAbs().maxCoeff());
   }
   EXPECT_LT(worst, 1e-4 * weight);
+}
+
+TEST_F(TrajoptSolve, StickingContactsHoldTheirFootPointsAndSlidesKeepTheirDirection) {
+  // Sticking: the contact is fixed in the object frame (xi constant over the interval).
+  // Sliding with a planned direction: xi moves that way or not at all (keep_slide_direction).
+  ASSERT_TRUE(result_->success);
+  const TrajectoryProblem p(test::defaultModel(), test::shortPlan(), testSettings());
+  const Schedule& sched = p.schedule();
+  int sticking = 0, sliding = 0;
+  for (int k = 0; k < sched.intervals(); ++k) {
+    const PhaseRun& run = sched.runOf(k);
+    for (int i = 0; i < test::defaultModel().numFingers(); ++i) {
+      const double dxi = result_->xi[k + 1][i] - result_->xi[k][i];
+      if (sched.role(k, i) == ContactRole::kStick) {
+        EXPECT_NEAR(dxi, 0.0, 1e-7) << "interval " << k << " finger " << i;
+        ++sticking;
+      } else if (sched.role(k, i) == ContactRole::kSlide && run.slide_direction[i] != 0) {
+        EXPECT_GE(run.slide_direction[i] * dxi, -1e-7) << "interval " << k << " finger " << i;
+        ++sliding;
+      }
+    }
+  }
+  EXPECT_GT(sticking, 0);  // the plan (C, P, U) has both kinds
+  EXPECT_GT(sliding, 0);
 }
 
 TEST(TrajoptFailure, IterationLimitKeepsTheInputPlan) {
