@@ -13,6 +13,7 @@
 
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/trajopt/plan_optimizer.h"
+#include "rbsf/trajopt/plan_refinement.h"
 #include "rbsf/trajopt/trajectory_problem.h"
 #include "trajopt_support.h"
 
@@ -199,6 +200,74 @@ TEST(TrajoptOptions, AnIpoptOptFileInTheWorkingDirectoryIsIgnored) {
   std::filesystem::remove_all(dir);
   EXPECT_TRUE(out.success) << out.plan.optimization.status;
   EXPECT_GT(out.plan.optimization.iterations, 1);
+}
+
+TEST(TrajoptSlipRate, SlidingContactsSlideAtLeastAtTheMinimumRate) {
+  // The replay sees a sliding contact at rest as sticking; with min_slip_rate the NLP keeps
+  // each planned slide moving its way at >= w = min(min_slip_rate, half the planned mean
+  // rate over the run) on every interval.
+  OptimizerSettings s = testSettings();
+  s.min_slip_rate = 0.1;
+  const OptimizedPlan out = PlanOptimizer(test::defaultModel(), s).optimize(test::shortPlan());
+  ASSERT_TRUE(out.success) << out.plan.optimization.message;
+  const TrajectoryProblem p(test::defaultModel(), test::shortPlan(), s);
+  const Schedule& sched = p.schedule();
+  int constrained = 0;
+  double slowest = 1e9;  // least ratio of slide to its minimum over the intervals
+  for (int k = 0; k < sched.intervals(); ++k) {
+    const PhaseRun& run = sched.runOf(k);
+    const double h = out.plan.samples[k + 1].t - out.plan.samples[k].t;
+    for (int i = 0; i < test::defaultModel().numFingers(); ++i) {
+      if (sched.role(k, i) != ContactRole::kSlide || run.slide_direction[i] == 0) continue;
+      const double w = std::min(s.min_slip_rate, 0.5 * run.slide_rate[i]);
+      const double moved = run.slide_direction[i] * (out.xi[k + 1][i] - out.xi[k][i]);
+      EXPECT_GE(moved, w * h - 1e-7) << "interval " << k << " finger " << i;
+      slowest = std::min(slowest, moved / (w * h));
+      ++constrained;
+    }
+  }
+  EXPECT_GT(constrained, 0);
+  // Without the minimum the same plan's refinement lets some slide nearly stop.
+  const OptimizedPlan free =
+      PlanOptimizer(test::defaultModel(), testSettings()).optimize(test::shortPlan());
+  ASSERT_TRUE(free.success);
+  double free_slowest = 1e9;
+  for (int k = 0; k < sched.intervals(); ++k) {
+    const PhaseRun& run = sched.runOf(k);
+    const double h = free.plan.samples[k + 1].t - free.plan.samples[k].t;
+    for (int i = 0; i < test::defaultModel().numFingers(); ++i) {
+      if (sched.role(k, i) != ContactRole::kSlide || run.slide_direction[i] == 0) continue;
+      const double w = std::min(s.min_slip_rate, 0.5 * run.slide_rate[i]);
+      free_slowest = std::min(
+          free_slowest, run.slide_direction[i] * (free.xi[k + 1][i] - free.xi[k][i]) / (w * h));
+    }
+  }
+  EXPECT_LT(free_slowest, 1.0 - 1e-3) << "the minimum would constrain nothing here";
+  EXPECT_GE(slowest, 1.0 - 1e-5);
+}
+
+TEST(TrajoptRefinement, ARejectedSolveIsRetriedOnceWithAMinimumSlipRate) {
+  // One Ipopt iteration never converges: both solves fail, and the reason names both; with
+  // the retry switched off there is one solve.
+  OptimizerSettings s = testSettings();
+  s.max_iterations = 1;
+  const PlanOptimizer opt(test::defaultModel(), s);
+  const Simulator sim(test::defaultModel(), SimulatorSettings{});
+  const planner::Plan& plan = test::shortPlan();
+  const RefineOutcome twice = refinePlan(opt, sim, plan, planner::ReplaySettings{});
+  EXPECT_FALSE(twice.accepted);
+  EXPECT_EQ(twice.attempts, 2);
+  EXPECT_NE(twice.reason.find("Maximum_Iterations_Exceeded"), std::string::npos) << twice.reason;
+  EXPECT_NE(twice.reason.find("retry with min_slip_rate = 0.1: optimisation failed"),
+            std::string::npos)
+      << twice.reason;
+  EXPECT_EQ(twice.plan.optimization.message, twice.reason);
+  EXPECT_EQ(twice.plan.segments.size(), plan.segments.size());  // the planner's plan, kept
+  RefineSettings no_retry;
+  no_retry.retry_min_slip_rate = 0.0;
+  const RefineOutcome once = refinePlan(opt, sim, plan, planner::ReplaySettings{}, no_retry);
+  EXPECT_EQ(once.attempts, 1);
+  EXPECT_EQ(once.reason.find("retry"), std::string::npos) << once.reason;
 }
 
 TEST(TrajoptFailure, TooFewKnotsForThePhaseRunsIsReported) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <exception>
+#include <sstream>
 
 namespace rbsf::trajopt {
 
@@ -30,48 +31,86 @@ bool finitePlan(const planner::Plan& p) {
   return true;
 }
 
-}  // namespace
-
-RefineOutcome refinePlan(const PlanOptimizer& optimizer, const Simulator& simulator,
-                         const planner::Plan& plan, const planner::ReplaySettings& replay) {
-  RefineOutcome out;
-  OptimizedPlan opt = optimizer.optimize(plan);
-  planner::OptimizationSummary summary = opt.plan.optimization;
-  summary.ran = true;
-  std::string note;
-  finite(summary.solve_time, "solve_time", note);
-  finite(summary.cost_before, "cost_before", note);
-  finite(summary.cost_after, "cost_after", note);
-
+/// One solve and its verdict.
+struct Attempt {
+  OptimizedPlan opt;
+  planner::OptimizationSummary summary;
   planner::ReplaySummary verdict;
-  if (!opt.success) {
-    out.reason = "optimisation failed (Ipopt status " + summary.status + ")";
-    if (!summary.message.empty()) out.reason += ": " + summary.message;
+  std::string reason;  ///< empty when accepted
+  bool accepted = false;
+};
+
+Attempt attempt(const PlanOptimizer& optimizer, const Simulator& simulator,
+                const planner::Plan& plan, const planner::ReplaySettings& replay) {
+  Attempt a;
+  a.opt = optimizer.optimize(plan);
+  a.summary = a.opt.plan.optimization;
+  a.summary.ran = true;
+  std::string note;
+  finite(a.summary.solve_time, "solve_time", note);
+  finite(a.summary.cost_before, "cost_before", note);
+  finite(a.summary.cost_after, "cost_after", note);
+  if (!a.opt.success) {
+    a.reason = "optimisation failed (Ipopt status " + a.summary.status + ")";
+    if (!a.summary.message.empty()) a.reason += ": " + a.summary.message;
   } else {
     std::string why = "it holds a non-finite value";
-    if (finitePlan(opt.plan)) {
+    if (finitePlan(a.opt.plan)) {
       try {
-        verdict = planner::verifyPlan(simulator, opt.plan, replay, &why);
+        a.verdict = planner::verifyPlan(simulator, a.opt.plan, replay, &why);
       } catch (const std::exception& e) {  // e.g. a bad knot: not the user's input
-        verdict = {};
+        a.verdict = {};
         why = std::string("cannot replay it: ") + e.what();
       }
     }
-    if (!verdict.ran) {
-      out.reason = "optimised plan rejected: " + why;
-    } else if (!finiteReplay(verdict.closed_loop) || !finiteReplay(verdict.open_loop)) {
-      verdict = {};  // a diverged replay is not written
-      out.reason = "optimised plan rejected: its replay diverged (non-finite state)";
-    } else if (!verdict.accepted) {
-      out.reason = "optimised plan rejected: " + why;
+    if (!a.verdict.ran) {
+      a.reason = "optimised plan rejected: " + why;
+    } else if (!finiteReplay(a.verdict.closed_loop) || !finiteReplay(a.verdict.open_loop)) {
+      a.verdict = {};  // a diverged replay is not written
+      a.reason = "optimised plan rejected: its replay diverged (non-finite state)";
+    } else if (!a.verdict.accepted) {
+      a.reason = "optimised plan rejected: " + why;
     }
   }
-  out.accepted = opt.success && verdict.accepted;
-  out.plan = out.accepted ? std::move(opt.plan) : plan;
-  if (!out.accepted) summary.message = out.reason;
-  if (!note.empty()) summary.message += (summary.message.empty() ? "" : "; ") + note;
-  out.plan.optimization = summary;
-  out.plan.replay = verdict;
+  a.accepted = a.opt.success && a.verdict.accepted;
+  a.summary.message = a.reason;
+  if (!note.empty()) a.summary.message += (a.summary.message.empty() ? "" : "; ") + note;
+  return a;
+}
+
+}  // namespace
+
+RefineOutcome refinePlan(const PlanOptimizer& optimizer, const Simulator& simulator,
+                         const planner::Plan& plan, const planner::ReplaySettings& replay,
+                         const RefineSettings& settings) {
+  RefineOutcome out;
+  Attempt first = attempt(optimizer, simulator, plan, replay);
+  out.attempts = 1;
+  const OptimizerSettings& os = optimizer.settings();
+  const bool cancelled = os.cancel != nullptr && os.cancel->load();
+  const double retry = settings.retry_min_slip_rate;
+  Attempt* chosen = &first;
+  Attempt second;
+  if (!first.accepted && !cancelled && retry > 0.0 && retry != os.min_slip_rate) {
+    OptimizerSettings again = os;
+    again.min_slip_rate = retry;
+    second = attempt(PlanOptimizer(optimizer.model(), again), simulator, plan, replay);
+    out.attempts = 2;
+    std::ostringstream what;
+    what << "retry with min_slip_rate = " << retry;
+    if (second.accepted) {
+      chosen = &second;
+      second.summary.message = what.str() + " accepted; the first solve's " + first.reason;
+    } else {
+      first.reason += "; " + what.str() + ": " + second.reason;
+      first.summary.message = first.reason;
+    }
+  }
+  out.accepted = chosen->accepted;
+  out.reason = chosen->reason;
+  out.plan = out.accepted ? std::move(chosen->opt.plan) : plan;
+  out.plan.optimization = chosen->summary;
+  out.plan.replay = chosen->verdict;
   if (!out.accepted) {
     // The plan in the file is the planner's: say whether it passes the same check, since a
     // planner's plan can be exact in simulation yet not survive joint tracking.

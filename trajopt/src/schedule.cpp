@@ -79,6 +79,7 @@ bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int interv
                                      : (st >= sl ? ContactRole::kStick : ContactRole::kSlide);
       const double d = wrappedDelta(xi_start[j][i], xi_end[j][i]);
       run.slide_direction[i] = d > 1e-6 ? 1 : (d < -1e-6 ? -1 : 0);
+      run.slide_rate[i] = std::abs(d) / run.duration;
     }
     // Contacts ordered by how often they stuck.
     std::array<int, kMaxFingers> order{};
@@ -102,7 +103,10 @@ bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int interv
         }
     }
     for (int i = 0; i < m; ++i)
-      if (run.role[i] != ContactRole::kSlide) run.slide_direction[i] = 0;
+      if (run.role[i] != ContactRole::kSlide) {
+        run.slide_direction[i] = 0;
+        run.slide_rate[i] = 0.0;
+      }
   }
 
   if (intervals < 2 * R) {

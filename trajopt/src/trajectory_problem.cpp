@@ -22,8 +22,8 @@ TrajectoryProblem::TrajectoryProblem(const RbsfModel& model, const planner::Plan
   variables_ = std::make_unique<DecisionVariables>(model, *layout_, schedule_, plan, settings);
   sets_.push_back(std::make_unique<CollocationConstraint>(model, *layout_, schedule_));
   sets_.push_back(std::make_unique<ContactConstraint>(model, *layout_, schedule_));
-  sets_.push_back(
-      std::make_unique<StickingConstraint>(*layout_, schedule_, settings.keep_slide_direction));
+  sets_.push_back(std::make_unique<StickingConstraint>(
+      *layout_, schedule_, settings.keep_slide_direction, settings.min_slip_rate));
   sets_.push_back(std::make_unique<FrictionConeConstraint>(
       *layout_, schedule_, model.cell().friction.mu_static, settings.cone_margin));
   costs_.push_back(std::make_unique<EffortCost>(model, *layout_, schedule_));

@@ -27,6 +27,10 @@ struct OptimizerSettings {
   /// \brief Sliding contacts keep the sign of the plan's slide over each run (xi may not
   ///        move back), so the replay does not stick or reverse where the plan slides.
   bool keep_slide_direction = true;
+  /// \brief With keep_slide_direction, sliding contacts move along the boundary at least
+  ///        at this rate of xi, capped at half the plan's mean rate over the run [1/s];
+  ///        0: no minimum.
+  double min_slip_rate = 0.0;
   /// \brief true: the exact Hessian of the Lagrangian (nested AutoDiff and closed form);
   ///        false: Ipopt's limited-memory (L-BFGS) approximation.
   bool exact_hessian = true;
@@ -62,6 +66,9 @@ class PlanOptimizer {
   /// \brief Refine `plan` (made by the planner for this model's cell).
   /// \throws InputError when the plan does not belong to the model (dimensions).
   OptimizedPlan optimize(const planner::Plan& plan) const;
+
+  const RbsfModel& model() const { return model_; }
+  const OptimizerSettings& settings() const { return settings_; }
 
  private:
   const RbsfModel& model_;

@@ -24,6 +24,8 @@ struct PhaseRun {
   std::array<ContactRole, kMaxFingers> role{};
   /// \brief Sign (+1, -1, 0) of the planned change of xi over the run, per contact.
   std::array<int, kMaxFingers> slide_direction{};
+  /// \brief Planned mean |d xi / dt| over the run, per sliding contact [1/s].
+  std::array<double, kMaxFingers> slide_rate{};
 };
 
 /// \brief Runs and the interval -> run map.
