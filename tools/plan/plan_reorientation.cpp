@@ -48,8 +48,10 @@ std::string departureSuffix(const planner::ReplayResult& x) {
 /// One line on the optimisation and one per replay.
 void printRefineSummary(const trajopt::RefineOutcome& r) {
   const planner::OptimizationSummary& o = r.plan.optimization;
-  std::printf("optimisation: %s, %d iterations, %.3f s, cost %.6g -> %.6g\n", o.status.c_str(),
-              o.iterations, o.solve_time, o.cost_before, o.cost_after);
+  // The summary is the accepted solve's, else the first's (see refinePlan).
+  const char* which = r.attempts < 2 ? "" : (r.accepted ? " (the retry)" : " (first of 2 solves)");
+  std::printf("optimisation%s: %s, %d iterations, %.3f s, cost %.6g -> %.6g\n", which,
+              o.status.c_str(), o.iterations, o.solve_time, o.cost_before, o.cost_after);
   const planner::ReplaySummary& s = r.plan.replay;
   if (s.ran) {
     for (const auto& [name, x] :
@@ -82,7 +84,9 @@ int run(int argc, char** argv) {
       "Exact plans are refined by the trajectory optimiser and replayed in the simulator open "
       "and closed loop (tracking controller); the refined plan is written only when the "
       "closed-loop replay ends within 1 cm and 2 degrees of the goal with f_n >= 0 and the "
-      "planned phase sequence, else the planner's plan is written marked accepted: false.\n"
+      "planned phase sequence (a rejected refinement is solved once more with a minimum slip "
+      "rate for sliding contacts), else the planner's plan is written marked accepted: "
+      "false.\n"
       "Exit status: 0 exact plan written (optimised and accepted, or --no-optimize); 4 exact "
       "plan written but the optimisation failed or was rejected (reason on stderr); 3 time "
       "limit without an exact plan (best distance printed; not optimised); 2 bad input "
@@ -117,7 +121,7 @@ int run(int argc, char** argv) {
   app.add_flag("--no-optimize", o.no_optimize, "write the planner's plan without optimising it");
   app.add_option("--knots", o.knots, "collocation intervals of the optimiser (default 100)");
   app.add_option("--optimize-time-limit", o.optimize_time_limit,
-                 "optimiser wall-time limit in seconds (default 30)");
+                 "optimiser wall-time limit per solve in seconds (default 30)");
   app.add_option("--optimize-iterations", o.optimize_iterations,
                  "optimiser iteration limit (default 500)");
   parseCommandLine(app, argc, argv);

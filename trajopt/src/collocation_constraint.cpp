@@ -129,7 +129,7 @@ void CollocationConstraint::knotHessian(const ConstVectorRef& z, int k, int kk, 
                                         Eigen::VectorXd& grad) const {
   const Cell& cell = model_.cell();
   const int m = model_.numFingers(), oq = layout_.q(kk), ov = layout_.v(kk);
-  const int o = layout_.knot(k);   // grad covers knots k and k+1
+  const int o = layout_.knot(k);        // grad covers knots k and k+1
   const int go = layout_.knot(kk) - o;  // knot kk's block inside grad
   // Contact wrenches: lambda_v^T (G1_i f_n + T_i f_t) by nested AutoDiff.
   for (int i = 0; i < m; ++i) {

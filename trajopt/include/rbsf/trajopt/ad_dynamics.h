@@ -136,8 +136,9 @@ void massTimes(const Cell& cell, const S* z, int oq, const ConfigVector<S>& a,
 /// \brief r = u(tau) + sum_i (G1_i f_n,i + T_i f_t,i) - Q(q, v): the right-hand side of
 ///        M(q) dv/dt = r at one knot whose block starts at z[o] (DecisionLayout local
 ///        offsets), with the contact forces f_n, f_t of the knot block at z[of] (default:
-///        the same knot; collocation holds knot k's over interval k). Forces act at the foot points x_o + R(phi) c(xi_i); the mechanism
-///        side is -J_i^T f_i with J_i's columns S p_i (theta) and R(theta)(0, 1) (l_i).
+///        the same knot; collocation holds knot k's over interval k). Forces act at the
+///        foot points x_o + R(phi) c(xi_i); the mechanism side is -J_i^T f_i with J_i's
+///        columns S p_i (theta) and R(theta)(0, 1) (l_i).
 template <class S>
 void knotRhs(const RbsfModel& model, const DecisionLayout& dl, const S* z, int o,
              ConfigVector<S>& r, int of = -1) {

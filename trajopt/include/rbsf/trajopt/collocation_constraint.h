@@ -29,8 +29,9 @@ namespace rbsf::trajopt {
 ///
 /// Hessian of lambda^T (D_q; D_v), exact: per knot, -h/(2 hbar) times the Hessian of
 /// lambda_v^T r (each contact's wrench by nested AutoDiff over (phi, theta, l_i of that
-/// knot, f_n, f_t of knot k, xi of that knot); the bias Q in closed form); the mass-matrix term through M_theta,theta's
-/// sum m_i L_i^2; and the T_j row -1/(2 N_j hbar) (lambda_q on v, grad lambda_v^T r).
+/// knot, f_n, f_t of knot k, xi of that knot); the bias Q in closed form); the mass-matrix
+/// term through M_theta,theta's sum m_i L_i^2; and the T_j row -1/(2 N_j hbar) (lambda_q
+/// on v, grad lambda_v^T r over both knots' variables).
 class CollocationConstraint final : public ConstraintSet {
  public:
   CollocationConstraint(const RbsfModel& model, const DecisionLayout& layout,
