@@ -37,7 +37,14 @@ struct Attempt {
   planner::OptimizationSummary summary;
   planner::ReplaySummary verdict;
   std::string reason;  ///< empty when accepted
+  std::string note;    ///< non-finite summary numbers, zeroed
   bool accepted = false;
+
+  /// \brief The summary's message: `text`, then the note.
+  void setMessage(const std::string& text) {
+    summary.message = text;
+    if (!note.empty()) summary.message += (text.empty() ? "" : "; ") + note;
+  }
 };
 
 Attempt attempt(const PlanOptimizer& optimizer, const Simulator& simulator,
@@ -46,10 +53,9 @@ Attempt attempt(const PlanOptimizer& optimizer, const Simulator& simulator,
   a.opt = optimizer.optimize(plan);
   a.summary = a.opt.plan.optimization;
   a.summary.ran = true;
-  std::string note;
-  finite(a.summary.solve_time, "solve_time", note);
-  finite(a.summary.cost_before, "cost_before", note);
-  finite(a.summary.cost_after, "cost_after", note);
+  finite(a.summary.solve_time, "solve_time", a.note);
+  finite(a.summary.cost_before, "cost_before", a.note);
+  finite(a.summary.cost_after, "cost_after", a.note);
   if (!a.opt.success) {
     a.reason = "optimisation failed (Ipopt status " + a.summary.status + ")";
     if (!a.summary.message.empty()) a.reason += ": " + a.summary.message;
@@ -73,8 +79,7 @@ Attempt attempt(const PlanOptimizer& optimizer, const Simulator& simulator,
     }
   }
   a.accepted = a.opt.success && a.verdict.accepted;
-  a.summary.message = a.reason;
-  if (!note.empty()) a.summary.message += (a.summary.message.empty() ? "" : "; ") + note;
+  a.setMessage(a.reason);
   return a;
 }
 
@@ -100,10 +105,10 @@ RefineOutcome refinePlan(const PlanOptimizer& optimizer, const Simulator& simula
     what << "retry with min_slip_rate = " << retry;
     if (second.accepted) {
       chosen = &second;
-      second.summary.message = what.str() + " accepted; the first solve's " + first.reason;
+      second.setMessage(what.str() + " accepted; the first solve's " + first.reason);
     } else {
       first.reason += "; " + what.str() + ": " + second.reason;
-      first.summary.message = first.reason;
+      first.setMessage(first.reason);
     }
   }
   out.accepted = chosen->accepted;
