@@ -38,7 +38,7 @@ void DecisionVariables::bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) c
       lower[layout_.tau(k) + layout::fingerForce(i)] = -f.force_limit;
       upper[layout_.tau(k) + layout::fingerForce(i)] = f.force_limit;
       // Forces are held over interval k; the last knot's act on no interval.
-      const ContactRole role = k < K - 1 ? schedule_.forceRole(k, i) : ContactRole::kOff;
+      const ContactRole role = k < K - 1 ? schedule_.role(k, i) : ContactRole::kOff;
       lower[layout_.fn(k) + i] = 0.0;
       upper[layout_.fn(k) + i] = role == ContactRole::kOff ? 0.0 : kInfinity;
       if (role != ContactRole::kStick) lower[layout_.ft(k) + i] = upper[layout_.ft(k) + i] = 0.0;

@@ -7,7 +7,7 @@ FrictionConeConstraint::FrictionConeConstraint(const DecisionLayout& layout,
     : mu_(margin * mu_s) {
   for (int k = 0; k < layout.intervals(); ++k)
     for (int i = 0; i < layout.fingers(); ++i)
-      if (schedule.forceRole(k, i) == ContactRole::kStick)
+      if (schedule.role(k, i) == ContactRole::kStick)
         knots_.emplace_back(layout.fn(k) + i, layout.ft(k) + i);
   for (int r = 0; r < rows(); ++r) {
     structure_.emplace_back(r, knots_[r / 2].first);

@@ -59,6 +59,10 @@ class DecisionLayout {
   int ft(int k) const { return fn(k) + m_; }
   /// \brief xi_k, length m.
   int xi(int k) const { return ft(k) + m_; }
+  /// \brief The knot whose held forces sample k of a refined plan reports: those of the
+  ///        interval that ends at knot k (knot 0: the first interval's), as planner samples
+  ///        report the step that ends at them.
+  int reportedForces(int k) const { return k > 0 ? k - 1 : 0; }
   /// \brief T_j, duration of run j [s].
   int duration(int j) const { return knots() * knotSize() + j; }
 

@@ -17,7 +17,7 @@ struct OptimizerSettings;
 ///
 /// Bounds: tau within the cell's torque and force limits; theta and strokes within their
 /// limits; f_n >= 0 where the contact is on over the interval the knot's forces are held
-/// on (Schedule::forceRole), 0 where off; f_t free where it sticks, 0 otherwise (mu_k = 0,
+/// on (Schedule::role), 0 where off; f_t free where it sticks, 0 otherwise (mu_k = 0,
 /// MODEL.md); the last knot's forces, held on no interval, fixed at 0; q_0 = plan.q0, v_0 = 0
 /// (start at rest); object pose of q_N = the goal (x, y, phi; phi taken within pi of the
 /// plan's final angle), v_N = 0 (at rest at the end); T_j within

@@ -40,10 +40,6 @@ struct Schedule {
   /// \brief Role of contact i at knot k: the "strongest" of its adjacent intervals
   ///        (stick > slide > off), so a knot between an on and an off run is on.
   ContactRole knotRole(int knot, int i) const;
-  /// \brief Role of the contact forces of knot k: those of interval min(k, N - 1).
-  ContactRole forceRole(int knot, int i) const {
-    return role(knot < intervals() ? knot : intervals() - 1, i);
-  }
 };
 
 /// \brief Re-simulate the plan's segments (time step plan.time_step, default simulator
