@@ -8,6 +8,7 @@
 //                                  [--time-limit 30] [--max-solve-time 30] [--verbose 1]
 //                                  [--only 30|90|180] [--force-weight 1e-3]
 //                                  [--smoothness 0.01] [--slide-direction 1]
+//                                  [--split-runs 0]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -59,6 +60,8 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[k], "--smoothness")) os.smoothness_weight = std::atof(argv[k + 1]);
     if (!std::strcmp(argv[k], "--slide-direction"))
       os.keep_slide_direction = std::atoi(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--split-runs"))
+      os.split_runs_by_contact_modes = std::atoi(argv[k + 1]) != 0;
   }
   const rbsf::trajopt::PlanOptimizer optimizer(model, os);
   std::printf("%-8s %6s %9s %8s %10s %9s %8s %12s  (knots %d, %d seeds; wall time, cpu median)\n",

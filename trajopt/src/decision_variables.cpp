@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
+#include "rbsf/dynamics/simulator.h"
 #include "rbsf/trajopt/nlp_element.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
@@ -89,28 +91,63 @@ double DecisionVariables::knotTime(const Eigen::Ref<const Eigen::VectorXd>& z, i
 
 Eigen::VectorXd DecisionVariables::initialGuess() const {
   const int m = model_.numFingers(), n = model_.configDim(), nu = model_.controlDim();
-  const int K = layout_.knots();
+  const int K = layout_.knots(), N = layout_.intervals();
   Eigen::VectorXd z = Eigen::VectorXd::Zero(layout_.size());
   for (int j = 0; j < layout_.runs(); ++j) z[layout_.duration(j)] = schedule_.runs[j].duration;
-  const auto& samples = plan_.samples;
+  std::vector<double> knot_t(K);
+  for (int k = 0; k < K; ++k) knot_t[k] = knotTime(z, k);
+
+  // The plan re-simulated step by step: the state at every step's end, and the contact
+  // impulses of each interval (the simulator's forces times its step), so that a held force
+  // is the interval's mean, impacts included, as the collocation integrates it.
+  SimulatorSettings ss;
+  ss.time_step = plan_.time_step;
+  const Simulator sim(model_, ss);
+  SimulatorWorkspace ws(m);
+  StepReport report;
+  SimState state(plan_.q0, VecQ::Zero(n));
+  std::vector<double> ts{0.0};
+  std::vector<VecQ> qs{state.q}, vs{state.v};
+  Eigen::MatrixXd impulse_n = Eigen::MatrixXd::Zero(m, N), impulse_t = impulse_n;
+  double t = 0.0;
+  int bin = 0;
+  for (const planner::PlanSegment& seg : plan_.segments) {
+    const double h = seg.duration / std::max(1, seg.steps);
+    for (int step = 0; step < seg.steps; ++step) {
+      sim.step(state, seg.tau, ws, &report);
+      while (bin + 1 < N && t + 0.5 * h >= knot_t[bin + 1]) ++bin;
+      for (int i = 0; i < m; ++i) {
+        impulse_n(i, bin) += h * report.contacts[i].f_n;
+        impulse_t(i, bin) += h * report.contacts[i].f_t;
+      }
+      t += h;
+      ts.push_back(t);
+      qs.push_back(state.q);
+      vs.push_back(state.v);
+    }
+  }
+
   ModelData data(m);
   VecC prev_xi(m);
   std::size_t s = 0;
   for (int k = 0; k < K; ++k) {
-    const double t = knotTime(z, k);
-    while (s + 2 < samples.size() && samples[s + 1].t <= t) ++s;
-    const planner::PlanSample& a = samples[s];
-    const planner::PlanSample& b = samples[std::min(s + 1, samples.size() - 1)];
-    const double w = b.t > a.t ? std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0) : 0.0;
-    const VecQ q = (1.0 - w) * a.q + w * b.q;
+    const double tk = knot_t[k];
+    while (s + 2 < ts.size() && ts[s + 1] <= tk) ++s;
+    const std::size_t s1 = std::min(s + 1, ts.size() - 1);
+    const double w = ts[s1] > ts[s] ? std::clamp((tk - ts[s]) / (ts[s1] - ts[s]), 0.0, 1.0) : 0.0;
+    const VecQ q = (1.0 - w) * qs[s] + w * qs[s1];
     z.segment(layout_.q(k), n) = q;
-    z.segment(layout_.v(k), n) = (1.0 - w) * a.v + w * b.v;
-    z.segment(layout_.fn(k), m) = (1.0 - w) * a.f_n + w * b.f_n;  // held from t on
+    z.segment(layout_.v(k), n) = (1.0 - w) * vs[s] + w * vs[s1];
+    if (k < N) {
+      const double hk = knot_t[k + 1] - knot_t[k];
+      z.segment(layout_.fn(k), m) = impulse_n.col(k) / hk;
+      z.segment(layout_.ft(k), m) = impulse_t.col(k) / hk;
+    }
     // tau: the segment that is held from t on.
     double seg_start = 0.0;
     const planner::PlanSegment* seg = &plan_.segments.back();
     for (const planner::PlanSegment& sg : plan_.segments) {
-      if (t < seg_start + sg.duration - 1e-12) {
+      if (tk < seg_start + sg.duration - 1e-12) {
         seg = &sg;
         break;
       }

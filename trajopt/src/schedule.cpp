@@ -24,7 +24,7 @@ ContactRole Schedule::knotRole(int knot, int i) const {
 }
 
 bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int intervals,
-                   Schedule& schedule, std::string& why) {
+                   bool split_by_contact_modes, Schedule& schedule, std::string& why) {
   const int m = model.numFingers();
   schedule = Schedule{};
   if (plan.segments.empty()) {
@@ -39,31 +39,66 @@ bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int interv
   StepReport report;
   ModelData data(m);
 
-  // Mode counts per run: [run][contact][mode].
-  std::vector<std::array<std::array<int, 3>, kMaxFingers>> counts;
-  std::vector<VecC> xi_start, xi_end;
+  // One pass of the simulator: each segment's mode counts [contact][mode] and the foot
+  // points at its end (xi_at[s + 1]; xi_at[0] at the start).
+  using Counts = std::array<std::array<int, 3>, kMaxFingers>;
+  const int S = static_cast<int>(plan.segments.size());
+  std::vector<Counts> seg_counts(S);
+  std::vector<VecC> xi_at;
   model.updateContacts(state.q, data);
-  double t = 0.0;
-  for (std::size_t s = 0; s < plan.segments.size(); ++s) {
-    const planner::PlanSegment& seg = plan.segments[s];
-    if (schedule.runs.empty() || schedule.runs.back().phase != seg.phase) {
-      PhaseRun run;
-      run.phase = seg.phase;
-      run.start = t;
-      schedule.runs.push_back(run);
-      counts.emplace_back();
-      for (auto& c : counts.back()) c.fill(0);
-      xi_start.push_back(data.xi_hint);
-    }
-    schedule.runs.back().duration += seg.duration;
-    t += seg.duration;
-    for (int k = 0; k < seg.steps; ++k) {
-      sim.step(state, seg.tau, ws, &report);
-      for (int i = 0; i < m; ++i) ++counts.back()[i][static_cast<int>(report.contacts[i].mode)];
+  xi_at.push_back(data.xi_hint);
+  for (int s = 0; s < S; ++s) {
+    for (auto& c : seg_counts[s]) c.fill(0);
+    for (int k = 0; k < plan.segments[s].steps; ++k) {
+      sim.step(state, plan.segments[s].tau, ws, &report);
+      for (int i = 0; i < m; ++i) ++seg_counts[s][i][static_cast<int>(report.contacts[i].mode)];
     }
     model.updateContacts(state.q, data);
-    if (xi_end.size() < schedule.runs.size()) xi_end.emplace_back();
-    xi_end.back() = data.xi_hint;
+    xi_at.push_back(data.xi_hint);
+  }
+  // The mode a contact held for most of a segment.
+  auto segmentModes = [&](int s) {
+    std::array<int, kMaxFingers> key{};
+    for (int i = 0; i < m; ++i) {
+      const auto& c = seg_counts[s][i];
+      key[i] = static_cast<int>(std::max_element(c.begin(), c.end()) - c.begin());
+    }
+    return key;
+  };
+  // Runs: maximal sequences of segments with one phase letter and, when split, one
+  // segment mode per contact.
+  auto groupRuns = [&](bool split, std::vector<int>& first_segment) {
+    first_segment.clear();
+    for (int s = 0; s < S; ++s)
+      if (s == 0 || plan.segments[s].phase != plan.segments[s - 1].phase ||
+          (split && segmentModes(s) != segmentModes(s - 1)))
+        first_segment.push_back(s);
+    first_segment.push_back(S);
+  };
+  std::vector<int> first_segment;
+  groupRuns(split_by_contact_modes, first_segment);
+  if (split_by_contact_modes && intervals < 2 * (static_cast<int>(first_segment.size()) - 1))
+    groupRuns(false, first_segment);  // too few intervals for the finer runs
+
+  std::vector<Counts> counts;
+  std::vector<VecC> xi_start, xi_end;
+  double t = 0.0;
+  for (std::size_t j = 0; j + 1 < first_segment.size(); ++j) {
+    PhaseRun run;
+    run.phase = plan.segments[first_segment[j]].phase;
+    run.start = t;
+    Counts c{};
+    for (auto& ci : c) ci.fill(0);
+    for (int s = first_segment[j]; s < first_segment[j + 1]; ++s) {
+      run.duration += plan.segments[s].duration;
+      for (int i = 0; i < m; ++i)
+        for (int mode = 0; mode < 3; ++mode) c[i][mode] += seg_counts[s][i][mode];
+    }
+    t += run.duration;
+    schedule.runs.push_back(run);
+    counts.push_back(c);
+    xi_start.push_back(xi_at[first_segment[j]]);
+    xi_end.push_back(xi_at[first_segment[j + 1]]);
   }
 
   const int R = static_cast<int>(schedule.runs.size());

@@ -15,7 +15,8 @@ namespace rbsf::trajopt {
 TrajectoryProblem::TrajectoryProblem(const RbsfModel& model, const planner::Plan& plan,
                                      const OptimizerSettings& settings)
     : model_(model) {
-  ok_ = buildSchedule(model, plan, settings.knots, schedule_, why_);
+  ok_ = buildSchedule(model, plan, settings.knots, settings.split_runs_by_contact_modes, schedule_,
+                      why_);
   if (!ok_) return;
   layout_ = std::make_unique<DecisionLayout>(model.numFingers(), schedule_.intervals(),
                                              static_cast<int>(schedule_.runs.size()));

@@ -24,9 +24,14 @@ struct OptimizerSettings;
 /// [duration_min_scale, duration_max_scale] x the planned duration of run j.
 ///
 /// Initial guess: the planner's trajectory at the knot times (knots spread uniformly over
-/// each run's planned duration): q, v, f_n interpolated linearly between plan samples, tau
-/// the held tau of the segment the knot starts, xi the closest boundary points of the tips
-/// (unwrapped along the plan), f_t = 0; then clipped into the bounds.
+/// each run's planned duration), the plan re-simulated step by step (plan.time_step): q, v
+/// interpolated linearly between simulator steps; f_n and f_t of knot k the simulator's
+/// mean contact forces over interval k (impulse / duration, impacts included), which is
+/// what a held force is to the collocation; tau the held tau of the segment the knot
+/// starts; xi the closest boundary points of the tips (unwrapped along the plan); then
+/// clipped into the bounds (a force where the schedule has the contact off becomes 0).
+/// Against forces sampled at the knots with f_t = 0 (before 2026-11-21), the median of the
+/// object's velocity defects at the guess is 4-40 times smaller on the default problems.
 class DecisionVariables {
  public:
   DecisionVariables(const RbsfModel& model, const DecisionLayout& layout, const Schedule& schedule,

@@ -31,6 +31,14 @@ struct OptimizerSettings {
   ///        at this rate of xi, capped at half the plan's mean rate over the run [1/s];
   ///        0: no minimum.
   double min_slip_rate = 0.0;
+  /// \brief true: a phase run also ends where a contact's simulated mode (stick, slide,
+  ///        separated; the majority over each plan segment) changes, so a contact that lifts
+  ///        off or lands inside a phase does so at a run boundary with the plan's timing;
+  ///        false: one run per phase letter, each contact's role the majority over the run.
+  ///        Falls back to false when `knots` is fewer than 2 per run. On 32 planner plans
+  ///        true converged 28 times against 26, but with refinePlan's retry 2 refinements
+  ///        passed the replay against 4 (BENCHMARKS.md), hence off by default.
+  bool split_runs_by_contact_modes = false;
   /// \brief true: the exact Hessian of the Lagrangian (nested AutoDiff and closed form);
   ///        false: Ipopt's limited-memory (L-BFGS) approximation.
   bool exact_hessian = true;

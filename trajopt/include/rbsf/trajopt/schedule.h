@@ -14,7 +14,8 @@ namespace rbsf::trajopt {
 /// \brief What a contact does over a whole run.
 enum class ContactRole { kOff, kSlide, kStick };
 
-/// \brief One run of equal phase letters (consecutive plan segments merged).
+/// \brief One run of plan segments merged: one phase letter (and, when split by contact
+///        modes, one simulated mode per contact; buildSchedule).
 struct PhaseRun {
   Phase phase = Phase::kC;
   double duration = 0.0;  ///< planned duration [s]
@@ -43,13 +44,16 @@ struct Schedule {
 };
 
 /// \brief Re-simulate the plan's segments (time step plan.time_step, default simulator
-///        settings otherwise), count each contact's mode per run and pick its role by
-///        majority, then make it agree with the run's letter: C at least two sticking
-///        (the most sticking ones), P exactly the one that sticks most, U none sticking
-///        (a sticking majority becomes sliding). Spread `intervals` over the runs in
-///        proportion to their durations, at least 2 each.
+///        settings otherwise) and group them into runs: consecutive segments of one phase
+///        letter and, with `split_by_contact_modes`, the same majority mode of every
+///        contact over the segment (a P run in which a third finger lands becomes two P
+///        runs); when that gives more than intervals / 2 runs, by letter alone. Count each
+///        contact's mode per run and pick its role by majority, then make it agree with the
+///        run's letter: C at least two sticking (the most sticking ones), P exactly the one
+///        that sticks most, U none sticking (a sticking majority becomes sliding). Spread
+///        `intervals` over the runs in proportion to their durations, at least 2 each.
 /// \return false (with `why`) when intervals < 2 runs or the plan has no segments.
 bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int intervals,
-                   Schedule& schedule, std::string& why);
+                   bool split_by_contact_modes, Schedule& schedule, std::string& why);
 
 }  // namespace rbsf::trajopt

@@ -1,0 +1,135 @@
+// The optimiser's phase schedule and initial guess on a short real plan (the planner's 15
+// degree turn, phases C P U with a finger lifting off inside U): runs follow the simulated
+// contact modes, and the guess's held forces are the simulator's, so its dynamics defects
+// are small.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "rbsf/dynamics/simulator.h"
+#include "rbsf/trajopt/schedule.h"
+#include "rbsf/trajopt/trajectory_problem.h"
+#include "trajopt_support.h"
+
+namespace rbsf::trajopt {
+namespace {
+
+using ModeKey = std::array<int, kMaxFingers>;
+
+// Each segment's majority contact modes, by a re-simulation of the plan written here.
+std::vector<ModeKey> segmentModes(const RbsfModel& model, const planner::Plan& plan) {
+  SimulatorSettings ss;
+  ss.time_step = plan.time_step;
+  const Simulator sim(model, ss);
+  SimulatorWorkspace ws(model.numFingers());
+  StepReport report;
+  SimState state(plan.q0, VecQ::Zero(plan.q0.size()));
+  std::vector<ModeKey> out;
+  for (const planner::PlanSegment& seg : plan.segments) {
+    std::array<std::array<int, 3>, kMaxFingers> count{};
+    for (int k = 0; k < seg.steps; ++k) {
+      sim.step(state, seg.tau, ws, &report);
+      for (int i = 0; i < model.numFingers(); ++i)
+        ++count[i][static_cast<int>(report.contacts[i].mode)];
+    }
+    ModeKey key{};
+    for (int i = 0; i < model.numFingers(); ++i)
+      key[i] =
+          static_cast<int>(std::max_element(count[i].begin(), count[i].end()) - count[i].begin());
+    out.push_back(key);
+  }
+  return out;
+}
+
+TEST(TrajoptSchedule, SplitRunsHoldOnePhaseAndOneSimulatedModePerContact) {
+  const RbsfModel& model = test::defaultModel();
+  const planner::Plan& plan = test::shortPlan();
+  Schedule split, letters;
+  std::string why;
+  ASSERT_TRUE(buildSchedule(model, plan, 60, true, split, why)) << why;
+  ASSERT_TRUE(buildSchedule(model, plan, 60, false, letters, why)) << why;
+  // The fixture's U run holds a lift-off, so splitting adds a run.
+  ASSERT_GT(split.runs.size(), letters.runs.size());
+
+  const std::vector<ModeKey> modes = segmentModes(model, plan);
+  // Segment s belongs to the run whose [start, start + duration) holds its start time.
+  std::size_t run = 0;
+  double t = 0.0;
+  std::vector<ModeKey> run_key(split.runs.size());
+  std::vector<bool> seen(split.runs.size(), false);
+  for (std::size_t s = 0; s < plan.segments.size(); ++s) {
+    while (run + 1 < split.runs.size() && t >= split.runs[run + 1].start - 1e-9) ++run;
+    EXPECT_EQ(plan.segments[s].phase, split.runs[run].phase) << "segment " << s;
+    if (!seen[run]) run_key[run] = modes[s];
+    seen[run] = true;
+    EXPECT_EQ(modes[s], run_key[run]) << "segment " << s << " in run " << run;
+    t += plan.segments[s].duration;
+  }
+  double total = 0.0;
+  for (std::size_t j = 0; j < split.runs.size(); ++j) {
+    total += split.runs[j].duration;
+    ASSERT_TRUE(seen[j]) << "run " << j << " holds no segment";
+    if (j > 0) {  // maximal: neighbours differ in letter or modes
+      EXPECT_TRUE(split.runs[j].phase != split.runs[j - 1].phase || run_key[j] != run_key[j - 1]);
+    }
+    if (split.runs[j].phase != Phase::kU) continue;
+    for (int i = 0; i < model.numFingers(); ++i)  // U: off where separated, else sliding
+      EXPECT_EQ(split.runs[j].role[i], run_key[j][i] == static_cast<int>(ContactMode::kSeparated)
+                                           ? ContactRole::kOff
+                                           : ContactRole::kSlide)
+          << "run " << j << " finger " << i;
+  }
+  EXPECT_NEAR(total, plan.duration(), 1e-9);
+
+  // Too few intervals for the finer runs: one run per phase letter, as without splitting.
+  Schedule coarse;
+  ASSERT_TRUE(
+      buildSchedule(model, plan, 2 * static_cast<int>(letters.runs.size()), true, coarse, why))
+      << why;
+  EXPECT_EQ(coarse.runs.size(), letters.runs.size());
+}
+
+TEST(TrajoptInitialGuess, HeldForcesAreTheSimulatorsSoTheObjectsDynamicsDefectsAreSmall) {
+  const RbsfModel& model = test::defaultModel();
+  OptimizerSettings settings;
+  settings.knots = 30;
+  const TrajectoryProblem problem(model, test::shortPlan(), settings);
+  ASSERT_TRUE(problem.ok()) << problem.why();
+  const Eigen::VectorXd z = problem.variables().initialGuess();
+  const DecisionLayout& dl = problem.layout();
+  const int n = model.configDim(), m = model.numFingers();
+
+  const ConstraintSet* collocation = nullptr;
+  for (const auto& set : problem.constraints())
+    if (set->name() == "collocation") collocation = set.get();
+  ASSERT_NE(collocation, nullptr);
+  Eigen::VectorXd g(collocation->rows());
+  collocation->values(z, g);
+  // Per interval, the largest of the object's three D_v rows (in units of its weight; rows
+  // 2n k + n + {x, y, phi}, collocation_constraint.h). Forces sampled at the knots with
+  // f_t = 0 give a median of 0.13 here; the simulator's interval means 0.004.
+  std::vector<double> worst;
+  for (int k = 0; k < dl.intervals(); ++k) {
+    double w = 0.0;
+    for (int c : {layout::kX, layout::kY, layout::kPhi})
+      w = std::max(w, std::abs(g[2 * n * k + n + c]));
+    worst.push_back(w);
+  }
+  std::nth_element(worst.begin(), worst.begin() + worst.size() / 2, worst.end());
+  EXPECT_LT(worst[worst.size() / 2], 0.02);
+
+  // Sticking contacts carry their friction from the start.
+  double max_ft = 0.0;
+  for (int k = 0; k < dl.intervals(); ++k)
+    for (int i = 0; i < m; ++i)
+      if (problem.schedule().role(k, i) == ContactRole::kStick)
+        max_ft = std::max(max_ft, std::abs(z[dl.ft(k) + i]));
+  EXPECT_GT(max_ft, 1.0);
+}
+
+}  // namespace
+}  // namespace rbsf::trajopt
