@@ -9,17 +9,18 @@
 //                                  [--only 30|90|180] [--force-weight 1e-3]
 //                                  [--smoothness 0.01] [--slide-direction 1]
 //                                  [--split-runs 0]
+// (--help lists them; bad input exits 2 with one message naming the option.)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <ctime>
 #include <string>
 #include <vector>
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/tools/tool_main.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
 namespace {
@@ -28,21 +29,50 @@ double median(std::vector<double> x) {
   std::sort(x.begin(), x.end());
   return x[x.size() / 2];
 }
-}  // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   int seeds = 5, knots = 100, verbose = 0, first_seed = 1;
   std::string only;
   double time_limit = 30.0, max_time = 30.0;
-  for (int k = 1; k + 1 < argc; k += 2) {
-    if (!std::strcmp(argv[k], "--seeds")) seeds = std::atoi(argv[k + 1]);
-    if (!std::strcmp(argv[k], "--knots")) knots = std::atoi(argv[k + 1]);
-    if (!std::strcmp(argv[k], "--time-limit")) time_limit = std::atof(argv[k + 1]);
-    if (!std::strcmp(argv[k], "--verbose")) verbose = std::atoi(argv[k + 1]);
-    if (!std::strcmp(argv[k], "--max-solve-time")) max_time = std::atof(argv[k + 1]);
-    if (!std::strcmp(argv[k], "--first-seed")) first_seed = std::atoi(argv[k + 1]);
-    if (!std::strcmp(argv[k], "--only")) only = argv[k + 1];  // 30, 90 or 180
-  }
+  rbsf::trajopt::OptimizerSettings os;
+  int keep_slide_direction = os.keep_slide_direction ? 1 : 0;
+  int split_runs = os.split_runs_by_contact_modes ? 1 : 0;
+  CLI::App app{
+      "Optimiser benchmark: the default cell's 30, 90 and 180 degree reorientations planned "
+      "with seeds first-seed.. (KPIECE1), each plan optimised once (no replay, no retry); per "
+      "problem plans found, converged, median iterations, median and worst wall time, median "
+      "CPU time, median effort reduction.",
+      "rbsf_trajopt_bench"};
+  app.footer(rbsf::tools::kExitStatusHelp);
+  app.add_option("--seeds", seeds, "planner seeds per problem (default 5)")
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--first-seed", first_seed, "first seed (default 1)")
+      ->check(CLI::Range(1, 1 << 30));
+  app.add_option("--knots", knots, "collocation intervals (default 100)")
+      ->check(CLI::Range(2, 100000));
+  app.add_option("--time-limit", time_limit, "planner time limit per plan [s] (default 30)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-solve-time", max_time, "optimiser wall-time limit [s] (default 30)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--verbose", verbose, "1: a line per plan (default 0)")->check(CLI::Range(0, 1));
+  app.add_option("--only", only, "one problem: 30, 90 or 180")
+      ->check(CLI::IsMember({"30", "90", "180"}));
+  app.add_option("--force-weight", os.force_weight, "OptimizerSettings::force_weight")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--smoothness", os.smoothness_weight, "OptimizerSettings::smoothness_weight")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--slide-direction", keep_slide_direction,
+                 "OptimizerSettings::keep_slide_direction, 0 or 1")
+      ->check(CLI::Range(0, 1));
+  app.add_option("--split-runs", split_runs,
+                 "OptimizerSettings::split_runs_by_contact_modes, 0 or 1")
+      ->check(CLI::Range(0, 1));
+  rbsf::tools::parseCommandLine(app, argc, argv);
+  os.knots = knots;
+  os.max_solve_time = max_time;
+  os.keep_slide_direction = keep_slide_direction != 0;
+  os.split_runs_by_contact_modes = split_runs != 0;
+
   const rbsf::RbsfModel model(rbsf::loadCell(RBSF_SOURCE_DIR "/cells/default.yaml"));
   struct Case {
     const char* label;
@@ -52,17 +82,6 @@ int main(int argc, char** argv) {
   const Case cases[] = {{"30 deg", {0.1, 0.40, -30 * deg}},
                         {"90 deg", {-0.1, 0.40, -90 * deg}},
                         {"180 deg", {-0.1, 0.40, 180 * deg}}};
-  rbsf::trajopt::OptimizerSettings os;
-  os.knots = knots;
-  os.max_solve_time = max_time;
-  for (int k = 1; k + 1 < argc; k += 2) {
-    if (!std::strcmp(argv[k], "--force-weight")) os.force_weight = std::atof(argv[k + 1]);
-    if (!std::strcmp(argv[k], "--smoothness")) os.smoothness_weight = std::atof(argv[k + 1]);
-    if (!std::strcmp(argv[k], "--slide-direction"))
-      os.keep_slide_direction = std::atoi(argv[k + 1]);
-    if (!std::strcmp(argv[k], "--split-runs"))
-      os.split_runs_by_contact_modes = std::atoi(argv[k + 1]) != 0;
-  }
   const rbsf::trajopt::PlanOptimizer optimizer(model, os);
   std::printf("%-8s %6s %9s %8s %10s %9s %8s %12s  (knots %d, %d seeds; wall time, cpu median)\n",
               "problem", "plans", "converged", "iter", "median[s]", "worst[s]", "cpu[s]",
@@ -107,4 +126,10 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return rbsf::tools::toolMain("rbsf_trajopt_bench", argc, argv, run);
 }

@@ -1,6 +1,7 @@
 // rbsf-bench as a user runs it: an end-to-end run of the default suite with a Planner
 // Arena database, shards whose union is the run list, parallel and sharded runs equal to a
-// sequential one, and refused input. Bounded: short time limits, a few runs.
+// sequential one, and refused input. Bounded: short time limits, a few runs. Also the
+// optimiser benchmark's command line (its runs take minutes: help and refusals only).
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -193,5 +194,32 @@ TEST(RbsfBench, BadInputIsRefusedWithExitTwo) {
     EXPECT_TRUE(r.out.empty()) << c.args;
   }
 }
+
+#ifdef RBSF_TRAJOPT_BENCH_EXE  // built with RBSF_BUILD_BENCHMARKS
+TEST(RbsfTrajoptBench, HelpListsTheOptionsAndBadInputIsRefusedWithExitTwo) {
+  const std::string kTrajoptBench = RBSF_TRAJOPT_BENCH_EXE;
+  const Result help = rbsf::cli_test::run(kTrajoptBench + " --help");
+  EXPECT_EQ(help.status, 0) << help.err;
+  for (const char* option : {"--seeds", "--knots", "--only", "--split-runs", "Exit status"})
+    EXPECT_NE(help.out.find(option), std::string::npos) << option;
+  struct Case {
+    std::string args, needle;
+  };
+  const Case cases[] = {
+      {"--seeds 0", "--seeds"},
+      {"--knots 1", "--knots"},
+      {"--only 45", "--only"},
+      {"--max-solve-time=-1", "--max-solve-time"},
+      {"--split-runs 2", "--split-runs"},
+      {"--bogus 1", "--bogus"},
+  };
+  for (const Case& c : cases) {
+    const Result r = rbsf::cli_test::run(kTrajoptBench + " " + c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << c.args;
+  }
+}
+#endif
 
 }  // namespace
