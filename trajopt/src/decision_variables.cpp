@@ -4,7 +4,6 @@
 #include <cmath>
 #include <vector>
 
-#include "rbsf/dynamics/simulator.h"
 #include "rbsf/trajopt/nlp_element.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
@@ -97,33 +96,19 @@ Eigen::VectorXd DecisionVariables::initialGuess() const {
   std::vector<double> knot_t(K);
   for (int k = 0; k < K; ++k) knot_t[k] = knotTime(z, k);
 
-  // The plan re-simulated step by step: the state at every step's end, and the contact
-  // impulses of each interval (the simulator's forces times its step), so that a held force
-  // is the interval's mean, impacts included, as the collocation integrates it.
-  SimulatorSettings ss;
-  ss.time_step = plan_.time_step;
-  const Simulator sim(model_, ss);
-  SimulatorWorkspace ws(m);
-  StepReport report;
-  SimState state(plan_.q0, VecQ::Zero(n));
-  std::vector<double> ts{0.0};
-  std::vector<VecQ> qs{state.q}, vs{state.v};
+  // The contact impulses of each interval from the schedule's re-simulation (the
+  // simulator's forces times its step), so that a held force is the interval's mean,
+  // impacts included, as the collocation integrates it.
+  const SimulatedSteps& steps = schedule_.steps;
+  const std::vector<double>& ts = steps.t;
   Eigen::MatrixXd impulse_n = Eigen::MatrixXd::Zero(m, N), impulse_t = impulse_n;
-  double t = 0.0;
   int bin = 0;
-  for (const planner::PlanSegment& seg : plan_.segments) {
-    const double h = seg.duration / std::max(1, seg.steps);
-    for (int step = 0; step < seg.steps; ++step) {
-      sim.step(state, seg.tau, ws, &report);
-      while (bin + 1 < N && t + 0.5 * h >= knot_t[bin + 1]) ++bin;
-      for (int i = 0; i < m; ++i) {
-        impulse_n(i, bin) += h * report.contacts[i].f_n;
-        impulse_t(i, bin) += h * report.contacts[i].f_t;
-      }
-      t += h;
-      ts.push_back(t);
-      qs.push_back(state.q);
-      vs.push_back(state.v);
+  for (std::size_t j = 0; j < steps.contacts.size(); ++j) {
+    const double h = ts[j + 1] - ts[j];
+    while (bin + 1 < N && ts[j] + 0.5 * h >= knot_t[bin + 1]) ++bin;
+    for (int i = 0; i < m; ++i) {
+      impulse_n(i, bin) += h * steps.contacts[j][i].f_n;
+      impulse_t(i, bin) += h * steps.contacts[j][i].f_t;
     }
   }
 
@@ -135,9 +120,9 @@ Eigen::VectorXd DecisionVariables::initialGuess() const {
     while (s + 2 < ts.size() && ts[s + 1] <= tk) ++s;
     const std::size_t s1 = std::min(s + 1, ts.size() - 1);
     const double w = ts[s1] > ts[s] ? std::clamp((tk - ts[s]) / (ts[s1] - ts[s]), 0.0, 1.0) : 0.0;
-    const VecQ q = (1.0 - w) * qs[s] + w * qs[s1];
+    const VecQ q = (1.0 - w) * steps.q[s] + w * steps.q[s1];
     z.segment(layout_.q(k), n) = q;
-    z.segment(layout_.v(k), n) = (1.0 - w) * vs[s] + w * vs[s1];
+    z.segment(layout_.v(k), n) = (1.0 - w) * steps.v[s] + w * steps.v[s1];
     if (k < N) {
       const double hk = knot_t[k + 1] - knot_t[k];
       z.segment(layout_.fn(k), m) = impulse_n.col(k) / hk;

@@ -38,9 +38,13 @@ bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int interv
   SimState state(plan.q0, VecQ::Zero(plan.q0.size()));
   StepReport report;
   ModelData data(m);
+  SimulatedSteps& steps = schedule.steps;
+  steps.t.push_back(0.0);
+  steps.q.push_back(state.q);
+  steps.v.push_back(state.v);
 
-  // One pass of the simulator: each segment's mode counts [contact][mode] and the foot
-  // points at its end (xi_at[s + 1]; xi_at[0] at the start).
+  // One pass of the simulator: every step's state and contacts, each segment's mode counts
+  // [contact][mode] and the foot points at its end (xi_at[s + 1]; xi_at[0] at the start).
   using Counts = std::array<std::array<int, 3>, kMaxFingers>;
   const int S = static_cast<int>(plan.segments.size());
   std::vector<Counts> seg_counts(S);
@@ -48,10 +52,16 @@ bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int interv
   model.updateContacts(state.q, data);
   xi_at.push_back(data.xi_hint);
   for (int s = 0; s < S; ++s) {
+    const planner::PlanSegment& seg = plan.segments[s];
+    const double h = seg.duration / std::max(1, seg.steps);
     for (auto& c : seg_counts[s]) c.fill(0);
-    for (int k = 0; k < plan.segments[s].steps; ++k) {
-      sim.step(state, plan.segments[s].tau, ws, &report);
+    for (int k = 0; k < seg.steps; ++k) {
+      sim.step(state, seg.tau, ws, &report);
       for (int i = 0; i < m; ++i) ++seg_counts[s][i][static_cast<int>(report.contacts[i].mode)];
+      steps.contacts.push_back(report.contacts);
+      steps.t.push_back(steps.t.back() + h);
+      steps.q.push_back(state.q);
+      steps.v.push_back(state.v);
     }
     model.updateContacts(state.q, data);
     xi_at.push_back(data.xi_hint);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/simulator.h"
 #include "rbsf/planner/plan.h"
 
 namespace rbsf::trajopt {
@@ -29,10 +30,20 @@ struct PhaseRun {
   std::array<double, kMaxFingers> slide_rate{};
 };
 
+/// \brief The plan re-simulated step by step, as buildSchedule saw it (the initial guess
+///        reads it too, so the plan is simulated once per problem).
+struct SimulatedSteps {
+  std::vector<double> t;   ///< t[j]: end of step j - 1, t[0] = 0 [s]
+  std::vector<VecQ> q, v;  ///< state at t[j]
+  /// \brief Contact reports of step j (from t[j] to t[j + 1]): mode, mean f_n, f_t [N].
+  std::vector<std::array<ContactStepReport, kMaxFingers>> contacts;
+};
+
 /// \brief Runs and the interval -> run map.
 struct Schedule {
   std::vector<PhaseRun> runs;
   std::vector<int> run_of_interval;  ///< size N
+  SimulatedSteps steps;              ///< the re-simulation the runs were read from
 
   int intervals() const { return static_cast<int>(run_of_interval.size()); }
   const PhaseRun& runOf(int interval) const { return runs[run_of_interval[interval]]; }
