@@ -82,14 +82,11 @@ void CollocationConstraint::jacobian(const ConstVectorRef& z, double* values) co
 
 std::vector<int> CollocationConstraint::intervalVariables(int k) const {
   // T_j's partners: every variable of the interval's two knots that r or D_q touch, i.e.
-  // all but x and y, and but knot k+1's forces (the interval holds knot k's).
+  // all but the positions x and y.
   std::vector<int> cols;
   for (int e = 0; e < 2; ++e)
-    for (int c = 0; c < layout_.knotSize(); ++c) {
-      const bool force = c >= layout_.localFn() && c < layout_.localXi();
-      if (c != layout::kX && c != layout::kY && !(e == 1 && force))
-        cols.push_back(layout_.knot(k + e) + c);
-    }
+    for (int c = 0; c < layout_.knotSize(); ++c)
+      if (c != layout::kX && c != layout::kY) cols.push_back(layout_.knot(k + e) + c);
   return cols;
 }
 
@@ -99,9 +96,9 @@ void CollocationConstraint::hessianStructure(HessianPattern& p) {
   for (int k = 0; k < layout_.intervals(); ++k) {
     for (int e = 0; e < 2; ++e) {
       const int kk = k + e, oq = layout_.q(kk), ov = layout_.v(kk);
-      for (int i = 0; i < m; ++i) {  // contact wrenches, forces held from knot k
-        const int c6[6] = {oq + layout::kPhi, oq + kTheta,       oq + stroke(i),
-                           layout_.fn(k) + i, layout_.ft(k) + i, layout_.xi(kk) + i};
+      for (int i = 0; i < m; ++i) {  // contact wrenches, with knot kk's forces
+        const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
+                           layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
         for (int a = 0; a < 6; ++a)
           for (int b = 0; b <= a; ++b) hess_slots_.push_back(p.slot(c6[a], c6[b]));
       }
@@ -113,70 +110,80 @@ void CollocationConstraint::hessianStructure(HessianPattern& p) {
         hess_slots_.push_back(p.slot(ov + stroke(i), ov + kTheta));
       }
       hess_slots_.push_back(p.slot(ov + kTheta, ov + kTheta));
-      for (int i = 0; i < m; ++i) {  // mass matrix
+      for (int i = 0; i < m; ++i) {  // D_v's mass matrix
         hess_slots_.push_back(p.slot(oq + stroke(i), oq + stroke(i)));
         hess_slots_.push_back(p.slot(oq + stroke(i), layout_.v(k) + kTheta));
         hess_slots_.push_back(p.slot(oq + stroke(i), layout_.v(k + 1) + kTheta));
       }
     }
+    const int oq = layout_.q(k);
+    for (int i = 0; i < m; ++i) {  // D_q's mass matrix M(q_k)
+      hess_slots_.push_back(p.slot(oq + stroke(i), oq + stroke(i)));
+      hess_slots_.push_back(p.slot(oq + stroke(i), layout_.q(k + 1) + kTheta));
+      hess_slots_.push_back(p.slot(oq + stroke(i), oq + kTheta));
+      hess_slots_.push_back(p.slot(oq + stroke(i), layout_.v(k) + kTheta));
+    }
     const int T = layout_.duration(schedule_.run_of_interval[k]);
+    hess_slots_.push_back(p.slot(T, T));
     for (int c : intervalVariables(k)) hess_slots_.push_back(p.slot(T, c));
   }
 }
 
-void CollocationConstraint::knotHessian(const ConstVectorRef& z, int k, int kk, const double* lv,
-                                        double scale, const int*& slot, double* values,
-                                        Eigen::VectorXd& grad) const {
+void CollocationConstraint::knotHessian(const ConstVectorRef& z, int k, int kk, const double* mu,
+                                        const double* nu, double scale, const int*& slot,
+                                        double* values, Eigen::VectorXd& grad) const {
   const Cell& cell = model_.cell();
   const int m = model_.numFingers(), oq = layout_.q(kk), ov = layout_.v(kk);
   const int o = layout_.knot(k);        // grad covers knots k and k+1
   const int go = layout_.knot(kk) - o;  // knot kk's block inside grad
-  // Contact wrenches: lambda_v^T (G1_i f_n + T_i f_t) by nested AutoDiff.
+  // Contact wrenches: mu^T (G1_i f_n + T_i f_t) by nested AutoDiff.
   for (int i = 0; i < m; ++i) {
-    const int c6[6] = {oq + layout::kPhi, oq + kTheta,       oq + stroke(i),
-                       layout_.fn(k) + i, layout_.ft(k) + i, layout_.xi(kk) + i};
+    const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
+                       layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
     double x[6];
     for (int a = 0; a < 6; ++a) x[a] = z[c6[a]];
     AD6x2 v[6], w[5];
     seedSecondOrder(x, v);
     contactWrench<AD6x2>(model_, i, v[0], v[1], v[2], v[3], v[4], v[5], w);
-    const AD6x2 phi = lv[layout::kX] * w[0] + lv[layout::kY] * w[1] + lv[layout::kPhi] * w[2] +
-                      lv[kTheta] * w[3] + lv[stroke(i)] * w[4];
+    const AD6x2 phi = mu[layout::kX] * w[0] + mu[layout::kY] * w[1] + mu[layout::kPhi] * w[2] +
+                      mu[kTheta] * w[3] + mu[stroke(i)] * w[4];
+    const int rows[5] = {layout::kX, layout::kY, layout::kPhi, kTheta, stroke(i)};
     for (int a = 0; a < 6; ++a) {
-      grad[c6[a] - o] += phi.value().derivatives()[a];
+      for (int b = 0; b < 5; ++b) grad[c6[a] - o] += nu[rows[b]] * w[b].value().derivatives()[a];
       for (int b = 0; b <= a; ++b) values[*slot++] += scale * phi.derivatives()[a].derivatives()[b];
     }
   }
-  // Bias: P = lambda_v^T Q (MODEL.md "Dynamics"); r contains -Q.
+  // Bias: P = mu^T Q (MODEL.md "Dynamics"); r contains -Q.
   const double g0 = cell.gravity, th = z[oq + kTheta], thd = z[ov + kTheta];
-  const double ct = std::cos(th), st = std::sin(th), lt = lv[kTheta];
+  const double ct = std::cos(th), st = std::sin(th), mt = mu[kTheta], nt = nu[kTheta];
   double P_tt = 0.0, P_tdtd = 0.0;
   for (int i = 0; i < m; ++i) {
     const FingerParams& f = cell.fingers[i];
-    P_tt += lt * f.mass * g0 * (-f.r * ct + (z[oq + stroke(i)] + f.com_offset) * st) -
-            lv[stroke(i)] * f.mass * g0 * ct;
+    P_tt += mt * f.mass * g0 * (-f.r * ct + (z[oq + stroke(i)] + f.com_offset) * st) -
+            mu[stroke(i)] * f.mass * g0 * ct;
   }
   values[*slot++] -= scale * P_tt;
   double dP_t = 0.0, dP_td = 0.0;
   for (int i = 0; i < m; ++i) {
     const FingerParams& f = cell.fingers[i];
-    const double L = z[oq + stroke(i)] + f.com_offset, ld = z[ov + stroke(i)], li = lv[stroke(i)];
-    values[*slot++] -= scale * (-lt * f.mass * g0 * ct);
-    values[*slot++] -= scale * (2.0 * lt * f.mass * thd);
-    values[*slot++] -= scale * (2.0 * lt * f.mass * ld - 2.0 * li * f.mass * thd);
-    values[*slot++] -= scale * (2.0 * lt * f.mass * L);
-    P_tdtd -= 2.0 * li * f.mass * L;
-    dP_t += lt * f.mass * g0 * (-f.r * st - L * ct) - li * f.mass * g0 * st;
-    dP_td += 2.0 * lt * f.mass * L * ld - 2.0 * li * f.mass * L * thd;
+    const double L = z[oq + stroke(i)] + f.com_offset, ld = z[ov + stroke(i)];
+    const double mi = mu[stroke(i)], ni = nu[stroke(i)];
+    values[*slot++] -= scale * (-mt * f.mass * g0 * ct);
+    values[*slot++] -= scale * (2.0 * mt * f.mass * thd);
+    values[*slot++] -= scale * (2.0 * mt * f.mass * ld - 2.0 * mi * f.mass * thd);
+    values[*slot++] -= scale * (2.0 * mt * f.mass * L);
+    P_tdtd -= 2.0 * mi * f.mass * L;
+    dP_t += nt * f.mass * g0 * (-f.r * st - L * ct) - ni * f.mass * g0 * st;
+    dP_td += 2.0 * nt * f.mass * L * ld - 2.0 * ni * f.mass * L * thd;
     grad[go + stroke(i)] -=
-        lt * (2.0 * f.mass * ld * thd - f.mass * g0 * st) - li * f.mass * thd * thd;
-    grad[go + layout_.localV() + stroke(i)] -= 2.0 * lt * f.mass * L * thd;
+        nt * (2.0 * f.mass * ld * thd - f.mass * g0 * st) - ni * f.mass * thd * thd;
+    grad[go + layout_.localV() + stroke(i)] -= 2.0 * nt * f.mass * L * thd;
   }
   values[*slot++] -= scale * P_tdtd;
   grad[go + kTheta] -= dP_t;
   grad[go + layout_.localV() + kTheta] -= dP_td;
   for (int j = 0; j < layout::controlDim(m); ++j)
-    grad[go + layout_.localTau() + j] += lv[layout::inputToConfig(j)];
+    grad[go + layout_.localTau() + j] += nu[layout::inputToConfig(j)];
 }
 
 void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* lambda,
@@ -185,32 +192,59 @@ void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* la
   const int m = model_.numFingers(), ks = layout_.knotSize();
   const int* slot = hess_slots_.data();
   Eigen::VectorXd grad(2 * ks);
+  double local[kMaxLocal];
+  ConfigVector<double> r0, lq_vec(n_), Mlq;
   for (int k = 0; k < layout_.intervals(); ++k) {
     const int j = schedule_.run_of_interval[k];
     const int N = schedule_.runs[j].intervals;
     const double inv_hbar = 1.0 / hbar_[j];
     const double h = z[layout_.duration(j)] / N;
-    const double* lq = lambda + 2 * n_ * k;
-    double lv[kMaxConfig];  // D_v's multipliers with its weight scaling folded in
-    for (int a = 0; a < n_; ++a) lv[a] = lq[n_ + a] * inv_weight_;
+    const double cq = inv_hbar * inv_hbar * inv_weight_, cv = inv_hbar * inv_weight_;
+    const double* lq = lambda + 2 * n_ * k;  // D_q's multipliers; D_v's follow
+    // Knot k's r enters D_q (h^2/2) and D_v (h/2); knot k+1's only D_v.
+    double mu0[kMaxConfig], nu0[kMaxConfig], mu1[kMaxConfig];
+    for (int a = 0; a < n_; ++a) {
+      mu1[a] = cv * lq[n_ + a];
+      mu0[a] = mu1[a] + h * cq * lq[a];
+      nu0[a] = mu1[a] + 2.0 * h * cq * lq[a];
+    }
     const double dv_theta = z[layout_.v(k + 1) + kTheta] - z[layout_.v(k) + kTheta];
     grad.setZero();
     for (int e = 0; e < 2; ++e) {
       const int kk = k + e, oq = layout_.q(kk);
-      knotHessian(z, k, kk, lv, -0.5 * h * inv_hbar, slot, values, grad);
-      for (int i = 0; i < m; ++i) {
+      knotHessian(z, k, kk, e == 0 ? mu0 : mu1, e == 0 ? nu0 : mu1, -0.5 * h, slot, values, grad);
+      for (int i = 0; i < m; ++i) {  // D_v's 1/2 (M_k + M_k+1) dv
         const FingerParams& f = cell.fingers[i];
-        const double L = z[oq + stroke(i)] + f.com_offset;
-        values[*slot++] += inv_hbar * lv[kTheta] * f.mass * dv_theta;
-        values[*slot++] -= inv_hbar * lv[kTheta] * f.mass * L;
-        values[*slot++] += inv_hbar * lv[kTheta] * f.mass * L;
+        const double L = z[oq + stroke(i)] + f.com_offset, c = cv * lq[n_ + kTheta] * f.mass;
+        values[*slot++] += c * dv_theta;
+        values[*slot++] -= c * L;
+        values[*slot++] += c * L;
       }
-      for (int a = 0; a < n_; ++a) grad[e * ks + layout_.localV() + a] += lq[a];
     }
-    // d^2 / dT dz: -1/(2 N hbar) (grad of lambda_v^T (r_k + r_k+1) + lambda_q on v_k, v_k+1).
-    const double cT = -0.5 * inv_hbar / N;
+    // grad: gradient of nu^T r over both knots; the T_j column is its -1/(2 N) multiple
+    // plus the gradient of d/dT (c_q lambda_q^T M(q_k) (-h v_k)) = -c_q/N lambda_q^T M v_k.
+    grad *= -0.5 / N;
+    gather(z, k, local);
+    for (int a = 0; a < n_; ++a) lq_vec[a] = lq[a];
+    massTimes<double>(cell, local, 0, lq_vec, Mlq);
+    for (int a = 0; a < n_; ++a) grad[layout_.localV() + a] -= cq / N * Mlq[a];
+    const int oq = layout_.q(k), ov = layout_.v(k);
+    const double dq_theta = z[layout_.q(k + 1) + kTheta] - z[oq + kTheta] - h * z[ov + kTheta];
+    for (int i = 0; i < m; ++i) {  // D_q's M(q_k) (q_k+1 - q_k - h v_k), M_theta,theta's L_i^2
+      const FingerParams& f = cell.fingers[i];
+      const double L = z[oq + stroke(i)] + f.com_offset, c = cq * lq[kTheta] * f.mass;
+      values[*slot++] += 2.0 * c * dq_theta;
+      values[*slot++] += 2.0 * c * L;
+      values[*slot++] -= 2.0 * c * L;
+      values[*slot++] -= 2.0 * c * L * h;
+      grad[stroke(i)] -= 2.0 * c * L * z[ov + kTheta] / N;
+    }
+    knotRhs<double>(model_, layout_, local, 0, r0);
+    double lr = 0.0;
+    for (int a = 0; a < n_; ++a) lr += lq[a] * r0[a];
+    values[*slot++] -= cq / (static_cast<double>(N) * N) * lr;  // T_j, T_j
     const int o = layout_.knot(k);
-    for (int c : intervalVariables(k)) values[*slot++] += cT * grad[c - o];
+    for (int c : intervalVariables(k)) values[*slot++] += grad[c - o];
   }
 }
 

@@ -38,8 +38,7 @@ void DecisionVariables::bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) c
       upper[layout_.q(k) + layout::stroke(i)] = f.stroke_max;
       lower[layout_.tau(k) + layout::fingerForce(i)] = -f.force_limit;
       upper[layout_.tau(k) + layout::fingerForce(i)] = f.force_limit;
-      // Forces are held over interval k; the last knot's act on no interval.
-      const ContactRole role = k < K - 1 ? schedule_.role(k, i) : ContactRole::kOff;
+      const ContactRole role = schedule_.forceRole(k, i);
       lower[layout_.fn(k) + i] = 0.0;
       upper[layout_.fn(k) + i] = role == ContactRole::kOff ? 0.0 : kInfinity;
       if (role != ContactRole::kStick) lower[layout_.ft(k) + i] = upper[layout_.ft(k) + i] = 0.0;
@@ -96,16 +95,18 @@ Eigen::VectorXd DecisionVariables::initialGuess() const {
   std::vector<double> knot_t(K);
   for (int k = 0; k < K; ++k) knot_t[k] = knotTime(z, k);
 
-  // The contact impulses of each interval from the schedule's re-simulation (the
-  // simulator's forces times its step), so that a held force is the interval's mean,
-  // impacts included, as the collocation integrates it.
+  // The contact impulses of each knot's share of time, [mid_k-1, mid_k] with mid_k the
+  // midpoint of interval k (the ends clamped to the plan), from the schedule's
+  // re-simulation (the simulator's forces times its step), so that a knot force is the
+  // mean over the time the collocation integrates it, impacts included.
   const SimulatedSteps& steps = schedule_.steps;
   const std::vector<double>& ts = steps.t;
-  Eigen::MatrixXd impulse_n = Eigen::MatrixXd::Zero(m, N), impulse_t = impulse_n;
+  auto mid = [&](int k) { return 0.5 * (knot_t[k] + knot_t[k + 1]); };
+  Eigen::MatrixXd impulse_n = Eigen::MatrixXd::Zero(m, K), impulse_t = impulse_n;
   int bin = 0;
   for (std::size_t j = 0; j < steps.contacts.size(); ++j) {
     const double h = ts[j + 1] - ts[j];
-    while (bin + 1 < N && ts[j] + 0.5 * h >= knot_t[bin + 1]) ++bin;
+    while (bin < N && ts[j] + 0.5 * h >= mid(bin)) ++bin;
     for (int i = 0; i < m; ++i) {
       impulse_n(i, bin) += h * steps.contacts[j][i].f_n;
       impulse_t(i, bin) += h * steps.contacts[j][i].f_t;
@@ -123,11 +124,9 @@ Eigen::VectorXd DecisionVariables::initialGuess() const {
     const VecQ q = (1.0 - w) * steps.q[s] + w * steps.q[s1];
     z.segment(layout_.q(k), n) = q;
     z.segment(layout_.v(k), n) = (1.0 - w) * steps.v[s] + w * steps.v[s1];
-    if (k < N) {
-      const double hk = knot_t[k + 1] - knot_t[k];
-      z.segment(layout_.fn(k), m) = impulse_n.col(k) / hk;
-      z.segment(layout_.ft(k), m) = impulse_t.col(k) / hk;
-    }
+    const double share = (k < N ? mid(k) : knot_t[N]) - (k > 0 ? mid(k - 1) : knot_t[0]);
+    z.segment(layout_.fn(k), m) = impulse_n.col(k) / share;
+    z.segment(layout_.ft(k), m) = impulse_t.col(k) / share;
     // tau: the segment that is held from t on.
     double seg_start = 0.0;
     const planner::PlanSegment* seg = &plan_.segments.back();

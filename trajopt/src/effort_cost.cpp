@@ -14,14 +14,12 @@ VecU effortWeights(const RbsfModel& model) {
 }
 
 KnotQuadraticCost::KnotQuadraticCost(std::string name, const DecisionLayout& layout,
-                                     const Schedule& schedule, int offset, Eigen::VectorXd weights,
-                                     bool held)
+                                     const Schedule& schedule, int offset, Eigen::VectorXd weights)
     : name_(std::move(name)),
       layout_(layout),
       schedule_(schedule),
       offset_(offset),
-      w_(std::move(weights)),
-      end_weight_{held ? 1.0 : 0.5, held ? 0.0 : 0.5} {}
+      w_(std::move(weights)) {}
 
 double KnotQuadraticCost::load(const ConstVectorRef& z, int k) const {
   return z.segment(column(k), w_.size()).cwiseAbs2().dot(w_);
@@ -32,7 +30,7 @@ double KnotQuadraticCost::value(const ConstVectorRef& z) const {
   for (int k = 0; k < layout_.intervals(); ++k) {
     const PhaseRun& run = schedule_.runOf(k);
     const double h = z[layout_.duration(schedule_.run_of_interval[k])] / run.intervals;
-    J += h * (end_weight_[0] * load(z, k) + end_weight_[1] * load(z, k + 1));
+    J += 0.5 * h * (load(z, k) + load(z, k + 1));
   }
   return J;
 }
@@ -44,20 +42,18 @@ void KnotQuadraticCost::addGradient(const ConstVectorRef& z, VectorRef grad) con
     const int N = schedule_.runs[j].intervals;
     const double h = z[layout_.duration(j)] / N;
     for (int e = 0; e < 2; ++e)
-      grad.segment(column(k + e), nw) +=
-          2.0 * end_weight_[e] * h * w_.cwiseProduct(z.segment(column(k + e), nw));
-    grad[layout_.duration(j)] +=
-        (end_weight_[0] * load(z, k) + end_weight_[1] * load(z, k + 1)) / N;
+      grad.segment(column(k + e), nw) += h * w_.cwiseProduct(z.segment(column(k + e), nw));
+    grad[layout_.duration(j)] += 0.5 * (load(z, k) + load(z, k + 1)) / N;
   }
 }
 
-// Per interval and end e (share c_e): d^2/dx^2 = 2 c_e h W; d^2/dx dT_j = 2 c_e W x / N_j.
+// Per interval and end (share 1/2): d^2/dx^2 = h W; d^2/dx dT_j = W x / N_j.
 void KnotQuadraticCost::hessianStructure(HessianPattern& p) {
   hess_slots_.clear();
   for (int k = 0; k < layout_.intervals(); ++k) {
     const int T = layout_.duration(schedule_.run_of_interval[k]);
     for (int e = 0; e < 2; ++e)
-      for (int a = 0; a < w_.size() && end_weight_[e] > 0.0; ++a) {
+      for (int a = 0; a < w_.size(); ++a) {
         const int c = column(k + e) + a;
         hess_slots_.push_back(p.slot(c, c));
         hess_slots_.push_back(p.slot(T, c));
@@ -72,8 +68,8 @@ void KnotQuadraticCost::addHessian(const ConstVectorRef& z, double sigma, double
     const int N = schedule_.runs[j].intervals;
     const double h = z[layout_.duration(j)] / N;
     for (int e = 0; e < 2; ++e)
-      for (int a = 0; a < w_.size() && end_weight_[e] > 0.0; ++a) {
-        const double c = 2.0 * end_weight_[e] * sigma * w_[a];
+      for (int a = 0; a < w_.size(); ++a) {
+        const double c = sigma * w_[a];
         values[*slot++] += c * h;
         values[*slot++] += c * z[column(k + e) + a] / N;
       }
@@ -95,6 +91,6 @@ Eigen::VectorXd forceWeights(const RbsfModel& model, double weight) {
 ContactForceCost::ContactForceCost(const RbsfModel& model, const DecisionLayout& layout,
                                    const Schedule& schedule, double weight)
     : KnotQuadraticCost("contact_force", layout, schedule, layout.localFn(),
-                        forceWeights(model, weight), /*held=*/true) {}
+                        forceWeights(model, weight)) {}
 
 }  // namespace rbsf::trajopt

@@ -5,9 +5,9 @@ namespace rbsf::trajopt {
 FrictionConeConstraint::FrictionConeConstraint(const DecisionLayout& layout,
                                                const Schedule& schedule, double mu_s, double margin)
     : mu_(margin * mu_s) {
-  for (int k = 0; k < layout.intervals(); ++k)
+  for (int k = 0; k < layout.knots(); ++k)
     for (int i = 0; i < layout.fingers(); ++i)
-      if (schedule.role(k, i) == ContactRole::kStick)
+      if (schedule.forceRole(k, i) == ContactRole::kStick)
         knots_.emplace_back(layout.fn(k) + i, layout.ft(k) + i);
   for (int r = 0; r < rows(); ++r) {
     structure_.emplace_back(r, knots_[r / 2].first);

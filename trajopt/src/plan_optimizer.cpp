@@ -175,7 +175,7 @@ OptimizedPlan PlanOptimizer::optimize(const planner::Plan& plan) const {
   out.plan.optimization = kept;
   const DecisionLayout& dl = problem.layout();
   for (int k = 0; k < dl.knots(); ++k) {
-    out.f_t.push_back(z.segment(dl.ft(dl.reportedForces(k)), dl.fingers()));
+    out.f_t.push_back(z.segment(dl.ft(k), dl.fingers()));
     out.xi.push_back(z.segment(dl.xi(k), dl.fingers()));
   }
   out.success = true;

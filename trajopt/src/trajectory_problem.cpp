@@ -108,10 +108,9 @@ planner::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z, const planner::
     s.q = z.segment(layout_->q(k), n);
     s.v = z.segment(layout_->v(k), n);
     s.tau = z.segment(layout_->tau(k), nu);
-    // Like the planner's samples: force and phase of the interval that ends at the knot.
-    const int ends = layout_->reportedForces(k);
-    s.f_n = z.segment(layout_->fn(ends), m);
-    s.phase = schedule_.runs[schedule_.run_of_interval[ends]].phase;
+    s.f_n = z.segment(layout_->fn(k), m);
+    // Like the planner's samples: the phase of the interval that ends at the knot.
+    s.phase = schedule_.runs[schedule_.run_of_interval[k > 0 ? k - 1 : 0]].phase;
     out.samples.push_back(s);
   }
   return out;

@@ -135,14 +135,12 @@ void massTimes(const Cell& cell, const S* z, int oq, const ConfigVector<S>& a,
 
 /// \brief r = u(tau) + sum_i (G1_i f_n,i + T_i f_t,i) - Q(q, v): the right-hand side of
 ///        M(q) dv/dt = r at one knot whose block starts at z[o] (DecisionLayout local
-///        offsets), with the contact forces f_n, f_t of the knot block at z[of] (default:
-///        the same knot; collocation holds knot k's over interval k). Forces act at the
-///        foot points x_o + R(phi) c(xi_i); the mechanism side is -J_i^T f_i with J_i's
-///        columns S p_i (theta) and R(theta)(0, 1) (l_i).
+///        offsets), with that knot's contact forces f_n, f_t. Forces act at the foot points
+///        x_o + R(phi) c(xi_i); the mechanism side is -J_i^T f_i with J_i's columns S p_i
+///        (theta) and R(theta)(0, 1) (l_i).
 template <class S>
 void knotRhs(const RbsfModel& model, const DecisionLayout& dl, const S* z, int o,
-             ConfigVector<S>& r, int of = -1) {
-  if (of < 0) of = o;
+             ConfigVector<S>& r) {
   using std::cos;
   using std::sin;
   const Cell& cell = model.cell();
@@ -152,8 +150,8 @@ void knotRhs(const RbsfModel& model, const DecisionLayout& dl, const S* z, int o
   const S* q = &z[o];
   const S* v = &z[o + dl.localV()];
   const S* tau = &z[o + dl.localTau()];
-  const S* fn = &z[of + dl.localFn()];
-  const S* ft = &z[of + dl.localFt()];
+  const S* fn = &z[o + dl.localFn()];
+  const S* ft = &z[o + dl.localFt()];
   const S* xi = &z[o + dl.localXi()];
   const S ct = cos(q[layout::kTheta]), st = sin(q[layout::kTheta]);
   const double g0 = cell.gravity;

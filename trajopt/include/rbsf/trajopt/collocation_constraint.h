@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief Trapezoidal collocation of the dynamics M(q) dv/dt = r(q, v, tau, f, xi)
+/// \brief Velocity-Verlet collocation of the dynamics M(q) dv/dt = r(q, v, tau, f, xi)
 ///        (MODEL.md "Dynamics", eqs. 5, 6, 18, 19) on every interval.
 
 #include <vector>
@@ -12,26 +12,37 @@
 
 namespace rbsf::trajopt {
 
-/// \brief For interval k of run j (h = T_j / N_j; hbar_j = planned T_j / N_j, a constant
-///        that only scales the rows), 2 (m + 4) rows, all = 0:
-///   D_q = (q_{k+1} - q_k - h/2 (v_k + v_{k+1})) / hbar                          [m, rad]
+/// \brief Velocity-Verlet collocation, for interval k of run j (h = T_j / N_j; hbar_j =
+///        planned T_j / N_j, a constant that only scales the rows), 2 (m + 4) rows, all = 0:
+///   D_q = (M(q_k) (q_{k+1} - q_k - h v_k) - h^2/2 r_k) / (hbar^2 W_o)
 ///   D_v = (1/2 (M(q_k) + M(q_{k+1})) (v_{k+1} - v_k) - h/2 (r_k + r_{k+1})) / (hbar W_o)
-///   (D_v in units of the object's weight W_o = m_o max(g0, 1 m/s^2) [N, N m per N]: rows
-///   of order one, so a tolerance or a derivative check means the same on every row)
-/// with r_e = u(tau_e) + sum_i [G_i f_i ; -J_i^T f_i] - Q(q_e, v_e) at knots e = k, k+1 and
-/// f_i = f_n,k,i n_i(xi_e,i) + f_t,k,i t_i(xi_e,i) in the world frame (knotRhs in
-/// ad_dynamics.h): the forces of knot k are held over the interval (decision_layout.h).
-/// (Multiplied by h rather than divided, so T_j enters linearly.)
+/// i.e. q_{k+1} = q_k + h v_k + h^2/2 a_k and v_{k+1} = v_k + h/2 (a_k + a_{k+1}) with
+/// a = M^-1 r, written without the inverse; both rows in units of the object's weight
+/// W_o = m_o max(g0, 1 m/s^2) [N per N]: rows of order one, so a tolerance or a
+/// derivative check means the same on every row. r_e = u(tau_e) + sum_i [G_i f_i ;
+/// -J_i^T f_i] - Q(q_e, v_e) at knots e = k, k+1 with that knot's own forces f_i =
+/// f_n,e,i n_i(xi_e,i) + f_t,e,i t_i(xi_e,i) in the world frame (knotRhs in ad_dynamics.h).
+///
+/// Why this scheme and not the trapezoidal rule (q_{k+1} - q_k = h/2 (v_k + v_{k+1})):
+/// eliminating v gives q_{k+1} - 2 q_k + q_{k-1} = h^2 a_k on equal steps, so every knot's
+/// force is seen by the positions, as in SHAKE/RATTLE. Under the trapezoidal rule (with
+/// forces per knot or held per interval) the positions see only the mean of neighbouring
+/// forces: forces alternating from knot to knot, with velocities alternating to match,
+/// leave every position and contact constraint unchanged. Solutions used that freedom:
+/// the held tangential force of a pivot alternated +52 / -46 / +66 N where the contact
+/// problem at the knots gives 5-12 N, so cones were checked on forces the simulator never
+/// applies (BENCHMARKS.md, "Velocity-Verlet collocation").
 ///
 /// Jacobian: forward-mode AutoDiff over the interval's two knot blocks and T_j. Its
 /// structure is the set of entries that are non-zero at a generic (random) point: the
 /// same for every interval, found once in the constructor.
 ///
-/// Hessian of lambda^T (D_q; D_v), exact: per knot, -h/(2 hbar) times the Hessian of
-/// lambda_v^T r (each contact's wrench by nested AutoDiff over (phi, theta, l_i of that
-/// knot, f_n, f_t of knot k, xi of that knot); the bias Q in closed form); the mass-matrix
-/// term through M_theta,theta's sum m_i L_i^2; and the T_j row -1/(2 N_j hbar) (lambda_q
-/// on v, grad lambda_v^T r over both knots' variables).
+/// Hessian of lambda_q^T D_q + lambda_v^T D_v, exact: per knot e, the Hessian of
+/// mu_e^T r_e times -h/2 with mu_k = c_v lambda_v + h c_q lambda_q, mu_k+1 = c_v lambda_v
+/// (c_q = 1 / (hbar^2 W_o), c_v = 1 / (hbar W_o); each contact's wrench by nested AutoDiff
+/// over (phi, theta, l_i, f_n, f_t, xi of that knot); the bias Q in closed form); the
+/// mass-matrix terms through M_theta,theta's sum m_i L_i^2; and the T_j row and column:
+/// d/dT of -h/2 mu_e^T r_e and of D_q's -h M(q_k) v_k, d^2/dT^2 = -c_q / N_j^2 lambda_q^T r_k.
 class CollocationConstraint final : public ConstraintSet {
  public:
   CollocationConstraint(const RbsfModel& model, const DecisionLayout& layout,
@@ -54,11 +65,11 @@ class CollocationConstraint final : public ConstraintSet {
  private:
   int localSize() const { return 2 * layout_.knotSize() + 1; }
   void gather(const ConstVectorRef& z, int k, double* local) const;
-  /// \brief Accumulate the Hessian of lambda_v^T r at knot kk (k or k + 1) of interval k,
-  ///        with the forces of knot k, scaled by `scale` into slots starting at *slot; grad
-  ///        (over knots k and k + 1) accumulates the gradient of lambda_v^T r.
-  void knotHessian(const ConstVectorRef& z, int k, int kk, const double* lambda_v, double scale,
-                   const int*& slot, double* values, Eigen::VectorXd& grad) const;
+  /// \brief Accumulate `scale` times the Hessian of mu^T r_kk at knot kk (k or k + 1) of
+  ///        interval k into slots starting at *slot; grad (over knots k and k + 1)
+  ///        accumulates the gradient of nu^T r_kk (the T_j column's multiplier).
+  void knotHessian(const ConstVectorRef& z, int k, int kk, const double* mu, const double* nu,
+                   double scale, const int*& slot, double* values, Eigen::VectorXd& grad) const;
   std::vector<int> intervalVariables(int k) const;  ///< T_j's partners on interval k
 
   const RbsfModel& model_;
@@ -79,16 +90,20 @@ void CollocationConstraint::defect(const S* local, int k, ConfigVector<S>& out) 
   const int j = schedule_.run_of_interval[k];
   const double inv_hbar = 1.0 / hbar_[j];
   const S h = local[2 * ks] / static_cast<double>(schedule_.runs[j].intervals);
-  ConfigVector<S> r0, r1, dv(n_), Mdv0, Mdv1;
+  ConfigVector<S> r0, r1, dq(n_), dv(n_), Mdq, Mdv0, Mdv1;
   knotRhs<S>(model_, layout_, local, 0, r0);
-  knotRhs<S>(model_, layout_, local, ks, r1, 0);
+  knotRhs<S>(model_, layout_, local, ks, r1);
   const int ov = layout_.localV();
-  for (int a = 0; a < n_; ++a) dv[a] = local[ks + ov + a] - local[ov + a];
+  for (int a = 0; a < n_; ++a) {
+    dq[a] = local[ks + a] - local[a] - h * local[ov + a];
+    dv[a] = local[ks + ov + a] - local[ov + a];
+  }
+  massTimes<S>(model_.cell(), local, 0, dq, Mdq);
   massTimes<S>(model_.cell(), local, 0, dv, Mdv0);
   massTimes<S>(model_.cell(), local, ks, dv, Mdv1);
   out.resize(2 * n_);
   for (int a = 0; a < n_; ++a) {
-    out[a] = (local[ks + a] - local[a] - 0.5 * h * (local[ov + a] + local[ks + ov + a])) * inv_hbar;
+    out[a] = (Mdq[a] - 0.5 * h * h * r0[a]) * (inv_hbar * inv_hbar * inv_weight_);
     out[n_ + a] =
         (0.5 * (Mdv0[a] + Mdv1[a]) - 0.5 * h * (r0[a] + r1[a])) * (inv_hbar * inv_weight_);
   }

@@ -16,11 +16,9 @@
 /// | duration(j)     | 1     | T_j      | duration of phase run j (after the knots)   | s         |
 /// Forces act on the object at the foot point x_o + R(phi) c(xi_i), world frame:
 /// f_i = f_n,i n_i + f_t,i t_i (MODEL.md "Contact kinematics"; n_i inward).
-/// The force magnitudes of knot k are held over interval k (zero-order hold, like the
-/// simulator's impulses over a step); their directions follow the foot points at both
-/// ends. Knot N's forces act on no interval and are fixed at 0 (sample N reports
-/// interval N-1's). Forces per knot that the trapezoidal rule only averages zigzag: the
-/// cones would be checked on forces the simulator never applies.
+/// The forces of knot k act at knot k, along its foot points' normals and tangents; the
+/// velocity-Verlet collocation (collocation_constraint.h) sees each knot's force in the
+/// positions, so they cannot alternate from knot to knot unseen.
 /// xi is not wrapped: it moves continuously over the plan (the initial guess unwraps it).
 
 #include "rbsf/dynamics/state_layout.h"
@@ -59,10 +57,6 @@ class DecisionLayout {
   int ft(int k) const { return fn(k) + m_; }
   /// \brief xi_k, length m.
   int xi(int k) const { return ft(k) + m_; }
-  /// \brief The knot whose held forces sample k of a refined plan reports: those of the
-  ///        interval that ends at knot k (knot 0: the first interval's), as planner samples
-  ///        report the step that ends at them.
-  int reportedForces(int k) const { return k > 0 ? k - 1 : 0; }
   /// \brief T_j, duration of run j [s].
   int duration(int j) const { return knots() * knotSize() + j; }
 

@@ -16,9 +16,9 @@ struct OptimizerSettings;
 /// \brief The variables' side of the NLP.
 ///
 /// Bounds: tau within the cell's torque and force limits; theta and strokes within their
-/// limits; f_n >= 0 where the contact is on over the interval the knot's forces are held
-/// on (Schedule::role), 0 where off; f_t free where it sticks, 0 otherwise (mu_k = 0,
-/// MODEL.md); the last knot's forces, held on no interval, fixed at 0; q_0 = plan.q0, v_0 = 0
+/// limits; f_n >= 0 where the contact is on in the interval the knot starts (the last
+/// knot: the last interval; Schedule::forceRole), 0 where off; f_t free where it sticks,
+/// 0 otherwise (mu_k = 0, MODEL.md); q_0 = plan.q0, v_0 = 0
 /// (start at rest); object pose of q_N = the goal (x, y, phi; phi taken within pi of the
 /// plan's final angle), v_N = 0 (at rest at the end); T_j within
 /// [duration_min_scale, duration_max_scale] x the planned duration of run j.
@@ -26,8 +26,9 @@ struct OptimizerSettings;
 /// Initial guess: the planner's trajectory at the knot times (knots spread uniformly over
 /// each run's planned duration), the plan re-simulated step by step (plan.time_step): q, v
 /// interpolated linearly between simulator steps; f_n and f_t of knot k the simulator's
-/// mean contact forces over interval k (impulse / duration, impacts included), which is
-/// what a held force is to the collocation; tau the held tau of the segment the knot
+/// mean contact forces over the knot's share of time, from the midpoint of the interval
+/// before it to that of the interval after it (impulse / duration, impacts included: the
+/// collocation integrates knot forces over those halves); tau the held tau of the segment the knot
 /// starts; xi the closest boundary points of the tips (unwrapped along the plan); then
 /// clipped into the bounds (a force where the schedule has the contact off becomes 0).
 /// Against forces sampled at the knots with f_t = 0 (before 2026-11-21), the median of the

@@ -18,14 +18,13 @@ namespace rbsf::trajopt {
 ///        is dimensionless, so the integral is in seconds at full load.
 VecU effortWeights(const RbsfModel& model);
 
-/// \brief J = sum_k h_k / 2 (x_k^T W x_k + x_{k+1}^T W x_{k+1}) (trapezoidal; x varies
-///        linearly over an interval) or, for `held` blocks, J = sum_k h_k x_k^T W x_k (x_k
-///        held over interval k), h_k = T_j / N_j, for the block x_k of knot k that starts at
-///        local offset `offset` with diagonal weights W.
+/// \brief J = sum_k h_k / 2 (x_k^T W x_k + x_{k+1}^T W x_{k+1}) (trapezoidal),
+///        h_k = T_j / N_j, for the block x_k of knot k that starts at local offset `offset`
+///        with diagonal weights W.
 class KnotQuadraticCost : public CostTerm {
  public:
   KnotQuadraticCost(std::string name, const DecisionLayout& layout, const Schedule& schedule,
-                    int offset, Eigen::VectorXd weights, bool held = false);
+                    int offset, Eigen::VectorXd weights);
   std::string name() const override { return name_; }
   double value(const ConstVectorRef& z) const override;
   void addGradient(const ConstVectorRef& z, VectorRef grad) const override;
@@ -41,7 +40,6 @@ class KnotQuadraticCost : public CostTerm {
   const Schedule& schedule_;
   int offset_;
   Eigen::VectorXd w_;
-  double end_weight_[2];  ///< share of interval k's h for knots k and k+1
   std::vector<int> hess_slots_;
 };
 
@@ -51,8 +49,8 @@ class EffortCost final : public KnotQuadraticCost {
   EffortCost(const RbsfModel& model, const DecisionLayout& layout, const Schedule& schedule);
 };
 
-/// \brief weight x the integral of sum_i (f_n,i^2 + f_t,i^2) / W_o^2 (forces held over
-///        each interval, decision_layout.h), W_o = m_o max(g0, 1)
+/// \brief weight x the integral of sum_i (f_n,i^2 + f_t,i^2) / W_o^2 (forces per knot,
+///        decision_layout.h), W_o = m_o max(g0, 1)
 ///        the object's weight [s]. Contact forces of several sticking contacts are
 ///        statically indeterminate (MODEL.md, phase C); this picks the least-norm ones and
 ///        keeps the NLP's Hessian regular in those directions. Small (default 1e-3), so the

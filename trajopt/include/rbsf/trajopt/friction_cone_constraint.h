@@ -8,8 +8,8 @@
 
 namespace rbsf::trajopt {
 
-/// \brief For every interval k on which contact i sticks (its f_t, held from knot k, is free),
-///        the linearised cone |f_t| <= margin mu_s f_n as two rows <= 0 [N]:
+/// \brief For every knot k whose forces have contact i sticking (Schedule::forceRole; its
+///        f_t is free), the linearised cone |f_t| <= margin mu_s f_n as two rows <= 0 [N]:
 ///   f_t,k,i - margin mu_s f_n,k,i <= 0,    -f_t,k,i - margin mu_s f_n,k,i <= 0.
 /// With f_n >= 0 (variable bounds) this is the planar cone exactly; margin < 1 keeps the
 /// forces off its edges so the replay does not start to slip.

@@ -59,9 +59,8 @@ struct OptimizedPlan {
   bool success = false;  ///< Ipopt converged (Solve_Succeeded or Solved_To_Acceptable_Level)
   planner::Plan plan;    ///< refined segments (tau ramps, see PlanSegment::tau_end) and samples
   /// \brief On success, per sample (knot) of `plan`: the tangential contact forces f_t [N]
-  ///        (along t_i, non-zero only where sticking; like the samples' f_n, those held over
-  ///        the interval that ends at the knot, knot 0: the first interval's) and the
-  ///        foot-point parameters xi.
+  ///        (along t_i, non-zero only where sticking; like the samples' f_n, the knot's
+  ///        own) and the foot-point parameters xi.
   std::vector<VecC> f_t, xi;
 };
 

@@ -3,6 +3,7 @@
 /// \brief The phase schedule the optimiser keeps: the plan's phase runs, each contact's
 ///        role in each run, and how the collocation intervals are spread over the runs.
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -52,6 +53,9 @@ struct Schedule {
   /// \brief Role of contact i at knot k: the "strongest" of its adjacent intervals
   ///        (stick > slide > off), so a knot between an on and an off run is on.
   ContactRole knotRole(int knot, int i) const;
+  /// \brief Role of contact i for knot k's forces: that of the interval the knot starts
+  ///        (the last knot: the last interval's), so a force acts from where a mode begins.
+  ContactRole forceRole(int knot, int i) const { return role(std::min(knot, intervals() - 1), i); }
 };
 
 /// \brief Re-simulate the plan's segments (time step plan.time_step, default simulator
