@@ -56,7 +56,7 @@ TEST_F(TrajoptSolve, SolutionIsPhysical) {
   const RbsfModel& model = test::defaultModel();
   const planner::Plan& out = result_->plan;
   const planner::Plan& in = test::shortPlan();
-  const int m = model.numFingers(), n = model.configDim();
+  const int m = model.numFingers();
   ASSERT_EQ(out.samples.size(), out.segments.size() + 1);
   // Start = q0 at rest; end = goal pose at rest.
   EXPECT_LT((out.samples.front().q - in.q0).cwiseAbs().maxCoeff(), 1e-9);
@@ -86,7 +86,6 @@ TEST_F(TrajoptSolve, SolutionIsPhysical) {
       EXPECT_LE(std::abs(s.tau[layout::fingerForce(i)]), cell.fingers[i].force_limit + 1e-6);
     }
   }
-  (void)n;
 }
 
 TEST_F(TrajoptSolve, DynamicsAndConesHoldByRbsfModel) {

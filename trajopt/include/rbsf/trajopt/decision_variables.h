@@ -28,11 +28,12 @@ struct OptimizerSettings;
 /// interpolated linearly between simulator steps; f_n and f_t of knot k the simulator's
 /// mean contact forces over the knot's share of time, from the midpoint of the interval
 /// before it to that of the interval after it (impulse / duration, impacts included: the
-/// collocation integrates knot forces over those halves); tau the held tau of the segment the knot
-/// starts; xi the closest boundary points of the tips (unwrapped along the plan); then
-/// clipped into the bounds (a force where the schedule has the contact off becomes 0).
+/// collocation integrates knot forces over those halves); tau the held tau of the segment
+/// the knot starts; xi the closest boundary points of the tips (unwrapped along the plan);
+/// then clipped into the bounds (a force where the schedule has the contact off becomes 0).
 /// Against forces sampled at the knots with f_t = 0 (before 2026-11-21), the median of the
-/// object's velocity defects at the guess is 4-40 times smaller on the default problems.
+/// object's velocity defects at the guess was 4-40 times smaller on the default problems
+/// (measured under the trapezoidal rule, BENCHMARKS.md).
 class DecisionVariables {
  public:
   DecisionVariables(const RbsfModel& model, const DecisionLayout& layout, const Schedule& schedule,
