@@ -110,7 +110,7 @@ planner::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z, const planner::
     s.tau = z.segment(layout_->tau(k), nu);
     s.f_n = z.segment(layout_->fn(k), m);
     // Like the planner's samples: the phase of the interval that ends at the knot.
-    s.phase = schedule_.runs[schedule_.run_of_interval[k > 0 ? k - 1 : 0]].phase;
+    s.phase = schedule_.runOf(k > 0 ? k - 1 : 0).phase;
     out.samples.push_back(s);
   }
   return out;
