@@ -164,6 +164,39 @@ TEST_F(PlanReplayTest, VerdictFlipsWhenTheGoalMoves) {
   EXPECT_NE(reason.find("phases"), std::string::npos) << reason;
 }
 
+TEST_F(PlanReplayTest, APartBroughtToRestMayEndInOneSettlingRunWithMoreSticking) {
+  const TrackingController controller(*model_, plan_->q0);
+  Plan p = *plan_;
+  ReplayResult r = replayPlan(planner_->simulator(), p, &controller, {});
+  ASSERT_TRUE(acceptReplay(p, r, {}));
+  auto accepted = [&](Phase planned, const std::string& seen) {
+    for (PlanSegment& seg : p.segments) seg.phase = planned;
+    r.phases = seen;
+    return acceptReplay(p, r, {});
+  };
+  // Ending at rest: the replay may add one run with more sticking contacts, nothing else.
+  p.samples.back().v.setZero();
+  EXPECT_TRUE(accepted(Phase::kU, "UP"));
+  EXPECT_TRUE(accepted(Phase::kU, "UC"));
+  EXPECT_TRUE(accepted(Phase::kP, "PC"));
+  EXPECT_FALSE(accepted(Phase::kP, "PU"));  // less sticking: a slide the plan does not make
+  EXPECT_FALSE(accepted(Phase::kC, "CP"));
+  EXPECT_FALSE(accepted(Phase::kU, "UPU"));  // not a last run
+  EXPECT_FALSE(accepted(Phase::kU, "UPC"));  // more than one
+  EXPECT_FALSE(accepted(Phase::kU, "P"));    // the planned run missing
+  // The part still moving at the plan's end (by more than rest_speed in any of x, y, phi):
+  // a trailing sticking run is a mode the plan does not have.
+  for (int k = 0; k < layout::kObjectDim; ++k) {
+    p.samples.back().v.setZero();
+    p.samples.back().v[k] = 2e-3;
+    EXPECT_FALSE(accepted(Phase::kU, "UP")) << "coordinate " << k;
+  }
+  ReplaySettings loose;
+  loose.rest_speed = 3e-3;
+  r.phases = "UP";
+  EXPECT_TRUE(acceptReplay(p, r, loose));
+}
+
 TEST_F(PlanReplayTest, AngleErrorIsMeasuredAgainstTheTurnThePlanMakes) {
   // The goal angle is read within pi of the plan's final angle, so the same plan aimed at
   // a goal one turn further ("absolute" 345 deg instead of -15 deg) still verifies, and a

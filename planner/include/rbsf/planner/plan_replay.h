@@ -36,7 +36,13 @@
 /// Acceptance (acceptReplay): the closed-loop replay ends within the position and angle
 /// tolerances of the goal (1 cm, 2 deg by default), has min_f_n >= 0, and its phase
 /// sequence equals the plan's (plannedPhases: the segments' phases weighted by their
-/// durations, filtered the same way).
+/// durations, filtered the same way), or is the plan's followed by one settling run: when
+/// the plan brings the part to rest (its last sample's part speeds |x'|, |y'| [m/s] and
+/// |phi'| [rad/s] all at most ReplaySettings::rest_speed, as optimised plans end) and ends
+/// in U or P, the replay may end in one more run of a phase with more sticking contacts
+/// (P or C after U, C after P). Contacts that slide to a stop stick under static friction
+/// (mu_s > 0), so a part brought to rest in a U run is a C or P part for its last moments;
+/// the planned sequence, which labels the run by its slides, cannot show that.
 
 #include <string>
 #include <vector>
@@ -52,7 +58,10 @@ struct ReplaySettings {
   double min_phase_run = 0.02;                ///< phase runs shorter than this dropped [s]
   double position_tolerance = 0.01;           ///< accepted final COM error [m]
   double angle_tolerance = 2.0 * M_PI / 180;  ///< accepted final angle error [rad]
-  TrackingSettings tracking;                  ///< gains of the closed loop
+  /// \brief A plan whose last sample's part speeds are all at most this ends at rest, and
+  ///        its replay may end in a settling run (file comment) [m/s, rad/s].
+  double rest_speed = 1e-3;
+  TrackingSettings tracking;  ///< gains of the closed loop
 };
 
 /// \brief Phase letters of consecutive runs (phase, duration [s]): runs shorter than
