@@ -8,7 +8,7 @@
 //                                  [--time-limit 30] [--max-solve-time 30] [--verbose 1]
 //                                  [--only 30|90|180] [--force-weight 1e-3]
 //                                  [--smoothness 0.01] [--slide-direction 1]
-//                                  [--split-runs 0]
+//                                  [--split-runs 0] [--tolerance 1e-6]
 // (--help lists them; bad input exits 2 with one message naming the option.)
 #include <algorithm>
 #include <cmath>
@@ -67,6 +67,8 @@ int run(int argc, char** argv) {
   app.add_option("--split-runs", split_runs,
                  "OptimizerSettings::split_runs_by_contact_modes, 0 or 1")
       ->check(CLI::Range(0, 1));
+  app.add_option("--tolerance", os.tolerance, "OptimizerSettings::tolerance (Ipopt tol)")
+      ->check(CLI::PositiveNumber);
   rbsf::tools::parseCommandLine(app, argc, argv);
   os.knots = knots;
   os.max_solve_time = max_time;

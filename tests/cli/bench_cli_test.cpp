@@ -200,7 +200,8 @@ TEST(RbsfTrajoptBench, HelpListsTheOptionsAndBadInputIsRefusedWithExitTwo) {
   const std::string kTrajoptBench = RBSF_TRAJOPT_BENCH_EXE;
   const Result help = rbsf::cli_test::run(kTrajoptBench + " --help");
   EXPECT_EQ(help.status, 0) << help.err;
-  for (const char* option : {"--seeds", "--knots", "--only", "--split-runs", "Exit status"})
+  for (const char* option :
+       {"--seeds", "--knots", "--only", "--split-runs", "--tolerance", "Exit status"})
     EXPECT_NE(help.out.find(option), std::string::npos) << option;
   struct Case {
     std::string args, needle;
@@ -211,6 +212,7 @@ TEST(RbsfTrajoptBench, HelpListsTheOptionsAndBadInputIsRefusedWithExitTwo) {
       {"--only 45", "--only"},
       {"--max-solve-time=-1", "--max-solve-time"},
       {"--split-runs 2", "--split-runs"},
+      {"--tolerance 0", "--tolerance"},
       {"--bogus 1", "--bogus"},
   };
   for (const Case& c : cases) {
