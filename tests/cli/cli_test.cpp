@@ -396,6 +396,23 @@ TEST(PlanReorientation, OptimisesByDefaultAndReportsTheReplay) {
   }
 }
 
+TEST(PlanReorientation, OptimizeToleranceReachesIpopt) {
+  // The same plan refined at the default tol (1e-6) and at 1e-2: Ipopt stops earlier at the
+  // looser one, so the option reaches the solver.
+  auto iterations = [&](const std::string& extra) {
+    const std::string out = writeTemp("tol_plan.json", "");
+    const Result r = run(kPlan + " --cell " + kCells +
+                         "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 5"
+                         " --time-limit 120 --knots 30 --optimize-time-limit 120 --quiet --out " +
+                         out + " " + extra);
+    EXPECT_TRUE(r.status == 0 || r.status == 4) << r.status << "\n" << r.err;
+    const auto j = nlohmann::json::parse(slurp(out));
+    EXPECT_EQ(j["optimization"]["status"], "Solve_Succeeded") << extra;
+    return j["optimization"]["iterations"].get<int>();
+  };
+  EXPECT_LT(iterations("--optimize-tolerance 1e-2"), iterations(""));
+}
+
 TEST(PlanReorientation, DecisiveModesMakeTheNinetyDegreePlanRepeatableUnderTracking) {
   // A 20-iteration optimisation does not converge, so the file keeps the planner's plan
   // and its own closed-loop replay (planner_replay). With the decisive-modes rule that plan
@@ -501,6 +518,10 @@ TEST(PlanReorientation, BadInputIsRefusedWithExitTwo) {
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --optimize-time-limit nan",
        "--optimize-time-limit"},
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --optimize-iterations 0", "--optimize-iterations"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --optimize-tolerance 0", "--optimize-tolerance"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --optimize-tolerance 2", "--optimize-tolerance"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --optimize-tolerance tight",
+       "--optimize-tolerance"},
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --goal-angle round", "--goal-angle"},
   };
   for (const Case& c : cases) {
