@@ -133,6 +133,11 @@ OptimizedPlan PlanOptimizer::optimize(const planner::Plan& plan) const {
   // the benchmark's 100-knot problems (block-banded KKT with one dense row per run).
   o.SetIntegerValue("mumps_pivot_order", 4);
   o.SetStringValue("nlp_scaling_method", "user-scaling");  // DecisionVariables::scaling()
+  // At most 3 iterative-refinement steps per linear solve (Ipopt's default is 10): on the
+  // benchmark's plans the same or fewer iterations at about 15 % less time each; the extra
+  // back-solves, where refinement stalls short of residual_ratio_max on a poorly
+  // conditioned KKT system, bought nothing (BENCHMARKS.md, "Where an iteration goes").
+  o.SetIntegerValue("max_refinement_steps", 3);
   o.SetStringValue("hessian_approximation", settings_.exact_hessian ? "exact" : "limited-memory");
   o.SetIntegerValue("print_level", settings_.print_level);
   o.SetIntegerValue("max_iter", settings_.max_iterations);
