@@ -80,28 +80,27 @@ void CollocationConstraint::jacobian(const ConstVectorRef& z, double* values) co
   }
 }
 
-std::vector<int> CollocationConstraint::intervalVariables(int k) const {
-  // T_j's partners: every variable of the interval's two knots that r or D_q touch, i.e.
-  // all but the positions x and y.
-  std::vector<int> cols;
-  for (int e = 0; e < 2; ++e)
-    for (int c = 0; c < layout_.knotSize(); ++c)
-      if (c != layout::kX && c != layout::kY) cols.push_back(layout_.knot(k + e) + c);
-  return cols;
-}
-
 void CollocationConstraint::hessianStructure(HessianPattern& p) {
-  const int m = model_.numFingers();
+  const int m = model_.numFingers(), ks = layout_.knotSize();
   hess_slots_.clear();
+  interval_cols_.clear();
+  for (int e = 0; e < 2; ++e)
+    for (int c = 0; c < ks; ++c)
+      if (c != layout::kX && c != layout::kY) interval_cols_.push_back(e * ks + c);
+  knot_mu_.assign(static_cast<std::size_t>(layout_.knots()) * n_, 0.0);
+  wrench_grad_.assign(static_cast<std::size_t>(layout_.knots()) * m * 30, 0.0);
+  for (int kk = 0; kk < layout_.knots(); ++kk) {  // contact wrenches, once per knot
+    const int oq = layout_.q(kk);
+    for (int i = 0; i < m; ++i) {
+      const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
+                         layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b <= a; ++b) hess_slots_.push_back(p.slot(c6[a], c6[b]));
+    }
+  }
   for (int k = 0; k < layout_.intervals(); ++k) {
     for (int e = 0; e < 2; ++e) {
       const int kk = k + e, oq = layout_.q(kk), ov = layout_.v(kk);
-      for (int i = 0; i < m; ++i) {  // contact wrenches, with knot kk's forces
-        const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
-                           layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
-        for (int a = 0; a < 6; ++a)
-          for (int b = 0; b <= a; ++b) hess_slots_.push_back(p.slot(c6[a], c6[b]));
-      }
       hess_slots_.push_back(p.slot(oq + kTheta, oq + kTheta));  // bias Q
       for (int i = 0; i < m; ++i) {
         hess_slots_.push_back(p.slot(oq + kTheta, oq + stroke(i)));
@@ -125,18 +124,31 @@ void CollocationConstraint::hessianStructure(HessianPattern& p) {
     }
     const int T = layout_.duration(schedule_.run_of_interval[k]);
     hess_slots_.push_back(p.slot(T, T));
-    for (int c : intervalVariables(k)) hess_slots_.push_back(p.slot(T, c));
+    for (int c : interval_cols_) hess_slots_.push_back(p.slot(T, layout_.knot(k) + c));
   }
 }
 
-void CollocationConstraint::knotHessian(const ConstVectorRef& z, int k, int kk, const double* mu,
-                                        const double* nu, double scale, const int*& slot,
-                                        double* values, Eigen::VectorXd& grad) const {
-  const Cell& cell = model_.cell();
-  const int m = model_.numFingers(), oq = layout_.q(kk), ov = layout_.v(kk);
-  const int o = layout_.knot(k);        // grad covers knots k and k+1
-  const int go = layout_.knot(kk) - o;  // knot kk's block inside grad
-  // Contact wrenches: mu^T (G1_i f_n + T_i f_t) by nested AutoDiff.
+double CollocationConstraint::intervalMultipliers(const ConstVectorRef& z, const double* lambda,
+                                                  int k, double* mu0, double* nu0,
+                                                  double* mu1) const {
+  const int j = schedule_.run_of_interval[k];
+  const double inv_hbar = 1.0 / hbar_[j];
+  const double h = z[layout_.duration(j)] / schedule_.runs[j].intervals;
+  const double cq = inv_hbar * inv_hbar * inv_weight_, cv = inv_hbar * inv_weight_;
+  const double* lq = lambda + 2 * n_ * k;  // D_q's multipliers; D_v's follow
+  // Knot k's r enters D_q (h^2/2) and D_v (h/2); knot k+1's only D_v.
+  for (int a = 0; a < n_; ++a) {
+    mu1[a] = cv * lq[n_ + a];
+    mu0[a] = mu1[a] + h * cq * lq[a];
+    nu0[a] = mu1[a] + 2.0 * h * cq * lq[a];
+  }
+  return h;
+}
+
+void CollocationConstraint::contactHessian(const ConstVectorRef& z, int kk, const int*& slot,
+                                           double* values) const {
+  const int m = model_.numFingers(), oq = layout_.q(kk);
+  const double* mu = knot_mu_.data() + static_cast<std::size_t>(kk) * n_;
   for (int i = 0; i < m; ++i) {
     const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
                        layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
@@ -147,10 +159,30 @@ void CollocationConstraint::knotHessian(const ConstVectorRef& z, int k, int kk, 
     contactWrench<AD6x2>(model_, i, v[0], v[1], v[2], v[3], v[4], v[5], w);
     const AD6x2 phi = mu[layout::kX] * w[0] + mu[layout::kY] * w[1] + mu[layout::kPhi] * w[2] +
                       mu[kTheta] * w[3] + mu[stroke(i)] * w[4];
-    const int rows[5] = {layout::kX, layout::kY, layout::kPhi, kTheta, stroke(i)};
-    for (int a = 0; a < 6; ++a) {
-      for (int b = 0; b < 5; ++b) grad[c6[a] - o] += nu[rows[b]] * w[b].value().derivatives()[a];
-      for (int b = 0; b <= a; ++b) values[*slot++] += scale * phi.derivatives()[a].derivatives()[b];
+    double* g = wrench_grad_.data() + (static_cast<std::size_t>(kk) * m + i) * 30;
+    for (int b = 0; b < 5; ++b)
+      for (int a = 0; a < 6; ++a) g[6 * b + a] = w[b].value().derivatives()[a];
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b <= a; ++b) values[*slot++] += phi.derivatives()[a].derivatives()[b];
+  }
+}
+
+void CollocationConstraint::knotHessian(const ConstVectorRef& z, int k, int kk, const double* mu,
+                                        const double* nu, double scale, const int*& slot,
+                                        double* values, double* grad) const {
+  const Cell& cell = model_.cell();
+  const int m = model_.numFingers(), oq = layout_.q(kk), ov = layout_.v(kk);
+  const int go = layout_.knot(kk) - layout_.knot(k);  // knot kk's block inside grad
+  // Contact wrenches' gradient (their Hessian is contactHessian's).
+  const int rows[5] = {layout::kX, layout::kY, layout::kPhi, kTheta, 0};
+  for (int i = 0; i < m; ++i) {
+    const int c6[6] = {
+        layout::kPhi,         kTheta, stroke(i), layout_.localFn() + i, layout_.localFt() + i,
+        layout_.localXi() + i};
+    const double* g = wrench_grad_.data() + (static_cast<std::size_t>(kk) * m + i) * 30;
+    for (int b = 0; b < 5; ++b) {
+      const double nb = nu[b < 4 ? rows[b] : stroke(i)];
+      for (int a = 0; a < 6; ++a) grad[go + c6[a]] += nb * g[6 * b + a];
     }
   }
   // Bias: P = mu^T Q (MODEL.md "Dynamics"); r contains -Q.
@@ -191,25 +223,30 @@ void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* la
   const Cell& cell = model_.cell();
   const int m = model_.numFingers(), ks = layout_.knotSize();
   const int* slot = hess_slots_.data();
-  Eigen::VectorXd grad(2 * ks);
+  double mu0[kMaxConfig], nu0[kMaxConfig], mu1[kMaxConfig];
+  // Each knot's wrench multiplier: the -h/2 mu of the one or two intervals sharing it.
+  std::fill(knot_mu_.begin(), knot_mu_.end(), 0.0);
+  for (int k = 0; k < layout_.intervals(); ++k) {
+    const double h = intervalMultipliers(z, lambda, k, mu0, nu0, mu1);
+    for (int a = 0; a < n_; ++a) {
+      knot_mu_[static_cast<std::size_t>(k) * n_ + a] -= 0.5 * h * mu0[a];
+      knot_mu_[static_cast<std::size_t>(k + 1) * n_ + a] -= 0.5 * h * mu1[a];
+    }
+  }
+  for (int kk = 0; kk < layout_.knots(); ++kk) contactHessian(z, kk, slot, values);
+
+  double grad[kMaxLocal];
   double local[kMaxLocal];
   ConfigVector<double> r0, lq_vec(n_), Mlq;
   for (int k = 0; k < layout_.intervals(); ++k) {
     const int j = schedule_.run_of_interval[k];
     const int N = schedule_.runs[j].intervals;
     const double inv_hbar = 1.0 / hbar_[j];
-    const double h = z[layout_.duration(j)] / N;
     const double cq = inv_hbar * inv_hbar * inv_weight_, cv = inv_hbar * inv_weight_;
-    const double* lq = lambda + 2 * n_ * k;  // D_q's multipliers; D_v's follow
-    // Knot k's r enters D_q (h^2/2) and D_v (h/2); knot k+1's only D_v.
-    double mu0[kMaxConfig], nu0[kMaxConfig], mu1[kMaxConfig];
-    for (int a = 0; a < n_; ++a) {
-      mu1[a] = cv * lq[n_ + a];
-      mu0[a] = mu1[a] + h * cq * lq[a];
-      nu0[a] = mu1[a] + 2.0 * h * cq * lq[a];
-    }
+    const double h = intervalMultipliers(z, lambda, k, mu0, nu0, mu1);
+    const double* lq = lambda + 2 * n_ * k;
     const double dv_theta = z[layout_.v(k + 1) + kTheta] - z[layout_.v(k) + kTheta];
-    grad.setZero();
+    std::fill(grad, grad + 2 * ks, 0.0);
     for (int e = 0; e < 2; ++e) {
       const int kk = k + e, oq = layout_.q(kk);
       knotHessian(z, k, kk, e == 0 ? mu0 : mu1, e == 0 ? nu0 : mu1, -0.5 * h, slot, values, grad);
@@ -223,7 +260,7 @@ void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* la
     }
     // grad: gradient of nu^T r over both knots; the T_j column is its -1/(2 N) multiple
     // plus the gradient of d/dT (c_q lambda_q^T M(q_k) (-h v_k)) = -c_q/N lambda_q^T M v_k.
-    grad *= -0.5 / N;
+    for (int c = 0; c < 2 * ks; ++c) grad[c] *= -0.5 / N;
     gather(z, k, local);
     for (int a = 0; a < n_; ++a) lq_vec[a] = lq[a];
     massTimes<double>(cell, local, 0, lq_vec, Mlq);
@@ -243,8 +280,7 @@ void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* la
     double lr = 0.0;
     for (int a = 0; a < n_; ++a) lr += lq[a] * r0[a];
     values[*slot++] -= cq / (static_cast<double>(N) * N) * lr;  // T_j, T_j
-    const int o = layout_.knot(k);
-    for (int c : intervalVariables(k)) values[*slot++] += grad[c - o];
+    for (int c : interval_cols_) values[*slot++] += grad[c];
   }
 }
 

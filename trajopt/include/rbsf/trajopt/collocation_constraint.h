@@ -43,6 +43,10 @@ namespace rbsf::trajopt {
 /// over (phi, theta, l_i, f_n, f_t, xi of that knot); the bias Q in closed form); the
 /// mass-matrix terms through M_theta,theta's sum m_i L_i^2; and the T_j row and column:
 /// d/dT of -h/2 mu_e^T r_e and of D_q's -h M(q_k) v_k, d^2/dT^2 = -c_q / N_j^2 lambda_q^T r_k.
+/// A knot's wrenches enter the two intervals that share it; their Hessian is linear in the
+/// multiplier, so it is differentiated once per knot with the two intervals' -h/2 mu summed
+/// (the nested AutoDiff is most of the Hessian's cost), and its gradient kept for the T_j
+/// columns. Workspace is sized in hessianStructure(); addHessian() allocates nothing.
 class CollocationConstraint final : public ConstraintSet {
  public:
   CollocationConstraint(const RbsfModel& model, const DecisionLayout& layout,
@@ -65,12 +69,19 @@ class CollocationConstraint final : public ConstraintSet {
  private:
   int localSize() const { return 2 * layout_.knotSize() + 1; }
   void gather(const ConstVectorRef& z, int k, double* local) const;
-  /// \brief Accumulate `scale` times the Hessian of mu^T r_kk at knot kk (k or k + 1) of
-  ///        interval k into slots starting at *slot; grad (over knots k and k + 1)
-  ///        accumulates the gradient of nu^T r_kk (the T_j column's multiplier).
+  /// \brief Interval k's step h = T_j / N_j and the multipliers of its knots' r: mu0 (knot
+  ///        k, in D_q and D_v), mu1 (knot k + 1, D_v only) and nu0 = d(h mu0)/dh (the T_j
+  ///        column's multiplier of knot k's r; knot k + 1's is mu1).
+  double intervalMultipliers(const ConstVectorRef& z, const double* lambda, int k, double* mu0,
+                             double* nu0, double* mu1) const;
+  /// \brief Write the Hessian of knot_mu_^T (the contact wrenches of knot kk) into slots from
+  ///        *slot and keep the wrenches' gradients in wrench_grad_.
+  void contactHessian(const ConstVectorRef& z, int kk, const int*& slot, double* values) const;
+  /// \brief Accumulate `scale` times the Hessian of mu^T (u - Q) at knot kk (k or k + 1) of
+  ///        interval k into slots from *slot; grad (over knots k and k + 1) accumulates the
+  ///        gradient of nu^T r_kk (the T_j column's multiplier), wrenches included.
   void knotHessian(const ConstVectorRef& z, int k, int kk, const double* mu, const double* nu,
-                   double scale, const int*& slot, double* values, Eigen::VectorXd& grad) const;
-  std::vector<int> intervalVariables(int k) const;  ///< T_j's partners on interval k
+                   double scale, const int*& slot, double* values, double* grad) const;
 
   const RbsfModel& model_;
   DecisionLayout layout_;
@@ -81,7 +92,13 @@ class CollocationConstraint final : public ConstraintSet {
   std::vector<std::pair<int, int>> local_pattern_;  ///< (row, local column)
   std::vector<std::pair<int, int>> structure_;
   std::vector<int> hess_slots_;
+  /// \brief T_j's partners on an interval, as offsets from knot k: every variable of the
+  ///        two knots that r or D_q touch, i.e. all but the positions x and y.
+  std::vector<int> interval_cols_;
   mutable std::vector<ADScalar> local_ad_;  ///< jacobian() workspace
+  mutable std::vector<double> knot_mu_;     ///< addHessian(): summed -h/2 mu per knot, K x n
+  /// \brief addHessian(): d w_b / d c6_a of each knot's contacts, K x m x 5 x 6.
+  mutable std::vector<double> wrench_grad_;
 };
 
 template <class S>
