@@ -10,6 +10,11 @@ namespace rbsf::trajopt {
 using layout::kTheta;
 using layout::stroke;
 
+namespace {
+/// Per contact: the 5 wrench rows (x, y, phi, theta, l_i) of r by its 6 local variables.
+constexpr int kWrenchRows = 5, kWrenchVars = 6, kWrenchGradSize = kWrenchRows * kWrenchVars;
+}  // namespace
+
 CollocationConstraint::CollocationConstraint(const RbsfModel& model, const DecisionLayout& layout,
                                              const Schedule& schedule)
     : model_(model),
@@ -88,7 +93,7 @@ void CollocationConstraint::hessianStructure(HessianPattern& p) {
     for (int c = 0; c < ks; ++c)
       if (c != layout::kX && c != layout::kY) interval_cols_.push_back(e * ks + c);
   knot_mu_.assign(static_cast<std::size_t>(layout_.knots()) * n_, 0.0);
-  wrench_grad_.assign(static_cast<std::size_t>(layout_.knots()) * m * 30, 0.0);
+  wrench_grad_.assign(static_cast<std::size_t>(layout_.knots()) * m * kWrenchGradSize, 0.0);
   for (int kk = 0; kk < layout_.knots(); ++kk) {  // contact wrenches, once per knot
     const int oq = layout_.q(kk);
     for (int i = 0; i < m; ++i) {
@@ -159,9 +164,9 @@ void CollocationConstraint::contactHessian(const ConstVectorRef& z, int kk, cons
     contactWrench<AD6x2>(model_, i, v[0], v[1], v[2], v[3], v[4], v[5], w);
     const AD6x2 phi = mu[layout::kX] * w[0] + mu[layout::kY] * w[1] + mu[layout::kPhi] * w[2] +
                       mu[kTheta] * w[3] + mu[stroke(i)] * w[4];
-    double* g = wrench_grad_.data() + (static_cast<std::size_t>(kk) * m + i) * 30;
-    for (int b = 0; b < 5; ++b)
-      for (int a = 0; a < 6; ++a) g[6 * b + a] = w[b].value().derivatives()[a];
+    double* g = wrench_grad_.data() + (static_cast<std::size_t>(kk) * m + i) * kWrenchGradSize;
+    for (int b = 0; b < kWrenchRows; ++b)
+      for (int a = 0; a < kWrenchVars; ++a) g[kWrenchVars * b + a] = w[b].value().derivatives()[a];
     for (int a = 0; a < 6; ++a)
       for (int b = 0; b <= a; ++b) values[*slot++] += phi.derivatives()[a].derivatives()[b];
   }
@@ -174,15 +179,16 @@ void CollocationConstraint::knotHessian(const ConstVectorRef& z, int k, int kk, 
   const int m = model_.numFingers(), oq = layout_.q(kk), ov = layout_.v(kk);
   const int go = layout_.knot(kk) - layout_.knot(k);  // knot kk's block inside grad
   // Contact wrenches' gradient (their Hessian is contactHessian's).
-  const int rows[5] = {layout::kX, layout::kY, layout::kPhi, kTheta, 0};
   for (int i = 0; i < m; ++i) {
+    const int rows[kWrenchRows] = {layout::kX, layout::kY, layout::kPhi, kTheta, stroke(i)};
     const int c6[6] = {
         layout::kPhi,         kTheta, stroke(i), layout_.localFn() + i, layout_.localFt() + i,
         layout_.localXi() + i};
-    const double* g = wrench_grad_.data() + (static_cast<std::size_t>(kk) * m + i) * 30;
-    for (int b = 0; b < 5; ++b) {
-      const double nb = nu[b < 4 ? rows[b] : stroke(i)];
-      for (int a = 0; a < 6; ++a) grad[go + c6[a]] += nb * g[6 * b + a];
+    const double* g =
+        wrench_grad_.data() + (static_cast<std::size_t>(kk) * m + i) * kWrenchGradSize;
+    for (int b = 0; b < kWrenchRows; ++b) {
+      const double nb = nu[rows[b]];
+      for (int a = 0; a < kWrenchVars; ++a) grad[go + c6[a]] += nb * g[kWrenchVars * b + a];
     }
   }
   // Bias: P = mu^T Q (MODEL.md "Dynamics"); r contains -Q.
