@@ -95,11 +95,10 @@ void CollocationConstraint::hessianStructure(HessianPattern& p) {
   knot_mu_.assign(static_cast<std::size_t>(layout_.knots()) * n_, 0.0);
   wrench_grad_.assign(static_cast<std::size_t>(layout_.knots()) * m * kWrenchGradSize, 0.0);
   for (int kk = 0; kk < layout_.knots(); ++kk) {  // contact wrenches, once per knot
-    const int oq = layout_.q(kk);
     for (int i = 0; i < m; ++i) {
-      const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
-                         layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
-      for (int a = 0; a < 6; ++a)
+      int c6[kWrenchVars];
+      wrenchColumns(kk, i, c6);
+      for (int a = 0; a < kWrenchVars; ++a)
         for (int b = 0; b <= a; ++b) hess_slots_.push_back(p.slot(c6[a], c6[b]));
     }
   }
@@ -133,33 +132,46 @@ void CollocationConstraint::hessianStructure(HessianPattern& p) {
   }
 }
 
-double CollocationConstraint::intervalMultipliers(const ConstVectorRef& z, const double* lambda,
-                                                  int k, double* mu0, double* nu0,
-                                                  double* mu1) const {
+CollocationConstraint::IntervalScales CollocationConstraint::intervalMultipliers(
+    const ConstVectorRef& z, const double* lambda, int k, double* mu0, double* nu0,
+    double* mu1) const {
   const int j = schedule_.run_of_interval[k];
   const double inv_hbar = 1.0 / hbar_[j];
-  const double h = z[layout_.duration(j)] / schedule_.runs[j].intervals;
-  const double cq = inv_hbar * inv_hbar * inv_weight_, cv = inv_hbar * inv_weight_;
+  IntervalScales s;
+  s.N = schedule_.runs[j].intervals;
+  s.h = z[layout_.duration(j)] / s.N;
+  s.cq = inv_hbar * inv_hbar * inv_weight_;
+  s.cv = inv_hbar * inv_weight_;
   const double* lq = lambda + 2 * n_ * k;  // D_q's multipliers; D_v's follow
   // Knot k's r enters D_q (h^2/2) and D_v (h/2); knot k+1's only D_v.
   for (int a = 0; a < n_; ++a) {
-    mu1[a] = cv * lq[n_ + a];
-    mu0[a] = mu1[a] + h * cq * lq[a];
-    nu0[a] = mu1[a] + 2.0 * h * cq * lq[a];
+    mu1[a] = s.cv * lq[n_ + a];
+    mu0[a] = mu1[a] + s.h * s.cq * lq[a];
+    nu0[a] = mu1[a] + 2.0 * s.h * s.cq * lq[a];
   }
-  return h;
+  return s;
+}
+
+void CollocationConstraint::wrenchColumns(int kk, int i, int* cols) const {
+  const int oq = layout_.q(kk);
+  cols[0] = oq + layout::kPhi;
+  cols[1] = oq + kTheta;
+  cols[2] = oq + stroke(i);
+  cols[3] = layout_.fn(kk) + i;
+  cols[4] = layout_.ft(kk) + i;
+  cols[5] = layout_.xi(kk) + i;
 }
 
 void CollocationConstraint::contactHessian(const ConstVectorRef& z, int kk, const int*& slot,
                                            double* values) const {
-  const int m = model_.numFingers(), oq = layout_.q(kk);
+  const int m = model_.numFingers();
   const double* mu = knot_mu_.data() + static_cast<std::size_t>(kk) * n_;
   for (int i = 0; i < m; ++i) {
-    const int c6[6] = {oq + layout::kPhi,  oq + kTheta,        oq + stroke(i),
-                       layout_.fn(kk) + i, layout_.ft(kk) + i, layout_.xi(kk) + i};
-    double x[6];
-    for (int a = 0; a < 6; ++a) x[a] = z[c6[a]];
-    AD6x2 v[6], w[5];
+    int c6[kWrenchVars];
+    wrenchColumns(kk, i, c6);
+    double x[kWrenchVars];
+    for (int a = 0; a < kWrenchVars; ++a) x[a] = z[c6[a]];
+    AD6x2 v[kWrenchVars], w[kWrenchRows];
     seedSecondOrder(x, v);
     contactWrench<AD6x2>(model_, i, v[0], v[1], v[2], v[3], v[4], v[5], w);
     const AD6x2 phi = mu[layout::kX] * w[0] + mu[layout::kY] * w[1] + mu[layout::kPhi] * w[2] +
@@ -167,7 +179,7 @@ void CollocationConstraint::contactHessian(const ConstVectorRef& z, int kk, cons
     double* g = wrench_grad_.data() + (static_cast<std::size_t>(kk) * m + i) * kWrenchGradSize;
     for (int b = 0; b < kWrenchRows; ++b)
       for (int a = 0; a < kWrenchVars; ++a) g[kWrenchVars * b + a] = w[b].value().derivatives()[a];
-    for (int a = 0; a < 6; ++a)
+    for (int a = 0; a < kWrenchVars; ++a)
       for (int b = 0; b <= a; ++b) values[*slot++] += phi.derivatives()[a].derivatives()[b];
   }
 }
@@ -177,18 +189,18 @@ void CollocationConstraint::knotHessian(const ConstVectorRef& z, int k, int kk, 
                                         double* values, double* grad) const {
   const Cell& cell = model_.cell();
   const int m = model_.numFingers(), oq = layout_.q(kk), ov = layout_.v(kk);
-  const int go = layout_.knot(kk) - layout_.knot(k);  // knot kk's block inside grad
+  const int o = layout_.knot(k);        // grad covers knots k and k+1
+  const int go = layout_.knot(kk) - o;  // knot kk's block inside grad
   // Contact wrenches' gradient (their Hessian is contactHessian's).
   for (int i = 0; i < m; ++i) {
     const int rows[kWrenchRows] = {layout::kX, layout::kY, layout::kPhi, kTheta, stroke(i)};
-    const int c6[6] = {
-        layout::kPhi,         kTheta, stroke(i), layout_.localFn() + i, layout_.localFt() + i,
-        layout_.localXi() + i};
+    int c6[kWrenchVars];
+    wrenchColumns(kk, i, c6);
     const double* g =
         wrench_grad_.data() + (static_cast<std::size_t>(kk) * m + i) * kWrenchGradSize;
     for (int b = 0; b < kWrenchRows; ++b) {
       const double nb = nu[rows[b]];
-      for (int a = 0; a < kWrenchVars; ++a) grad[go + c6[a]] += nb * g[kWrenchVars * b + a];
+      for (int a = 0; a < kWrenchVars; ++a) grad[c6[a] - o] += nb * g[kWrenchVars * b + a];
     }
   }
   // Bias: P = mu^T Q (MODEL.md "Dynamics"); r contains -Q.
@@ -233,7 +245,7 @@ void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* la
   // Each knot's wrench multiplier: the -h/2 mu of the one or two intervals sharing it.
   std::fill(knot_mu_.begin(), knot_mu_.end(), 0.0);
   for (int k = 0; k < layout_.intervals(); ++k) {
-    const double h = intervalMultipliers(z, lambda, k, mu0, nu0, mu1);
+    const double h = intervalMultipliers(z, lambda, k, mu0, nu0, mu1).h;
     for (int a = 0; a < n_; ++a) {
       knot_mu_[static_cast<std::size_t>(k) * n_ + a] -= 0.5 * h * mu0[a];
       knot_mu_[static_cast<std::size_t>(k + 1) * n_ + a] -= 0.5 * h * mu1[a];
@@ -245,11 +257,7 @@ void CollocationConstraint::addHessian(const ConstVectorRef& z, const double* la
   double local[kMaxLocal];
   ConfigVector<double> r0, lq_vec(n_), Mlq;
   for (int k = 0; k < layout_.intervals(); ++k) {
-    const int j = schedule_.run_of_interval[k];
-    const int N = schedule_.runs[j].intervals;
-    const double inv_hbar = 1.0 / hbar_[j];
-    const double cq = inv_hbar * inv_hbar * inv_weight_, cv = inv_hbar * inv_weight_;
-    const double h = intervalMultipliers(z, lambda, k, mu0, nu0, mu1);
+    const auto [N, h, cq, cv] = intervalMultipliers(z, lambda, k, mu0, nu0, mu1);
     const double* lq = lambda + 2 * n_ * k;
     const double dv_theta = z[layout_.v(k + 1) + kTheta] - z[layout_.v(k) + kTheta];
     std::fill(grad, grad + 2 * ks, 0.0);

@@ -69,11 +69,21 @@ class CollocationConstraint final : public ConstraintSet {
  private:
   int localSize() const { return 2 * layout_.knotSize() + 1; }
   void gather(const ConstVectorRef& z, int k, double* local) const;
-  /// \brief Interval k's step h = T_j / N_j and the multipliers of its knots' r: mu0 (knot
-  ///        k, in D_q and D_v), mu1 (knot k + 1, D_v only) and nu0 = d(h mu0)/dh (the T_j
-  ///        column's multiplier of knot k's r; knot k + 1's is mu1).
-  double intervalMultipliers(const ConstVectorRef& z, const double* lambda, int k, double* mu0,
-                             double* nu0, double* mu1) const;
+  /// \brief Interval k's step and row scales (class comment).
+  struct IntervalScales {
+    int N;      ///< intervals of its run j
+    double h;   ///< T_j / N_j [s]
+    double cq;  ///< 1 / (hbar_j^2 W_o), D_q's scale
+    double cv;  ///< 1 / (hbar_j W_o), D_v's scale
+  };
+  /// \brief Interval k's scales and the multipliers of its knots' r: mu0 (knot k, in D_q
+  ///        and D_v), mu1 (knot k + 1, D_v only) and nu0 = d(h mu0)/dh (the T_j column's
+  ///        multiplier of knot k's r; knot k + 1's is mu1).
+  IntervalScales intervalMultipliers(const ConstVectorRef& z, const double* lambda, int k,
+                                     double* mu0, double* nu0, double* mu1) const;
+  /// \brief The columns of z that finger i's contact wrench at knot kk depends on:
+  ///        (phi, theta, l_i, f_n,i, f_t,i, xi_i), the AD6x2 seeds' order.
+  void wrenchColumns(int kk, int i, int* cols) const;
   /// \brief Write the Hessian of knot_mu_^T (the contact wrenches of knot kk) into slots from
   ///        *slot and keep the wrenches' gradients in wrench_grad_.
   void contactHessian(const ConstVectorRef& z, int kk, const int*& slot, double* values) const;
