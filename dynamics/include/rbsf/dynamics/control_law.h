@@ -1,0 +1,115 @@
+#pragma once
+/// \file
+/// \brief The control law: the one feedback that executes a plan on a cell, used by the
+///        certificate's trials, rbsf-replay, the controller facade and the example loop.
+///
+/// Every control period [t, t + h) it takes the joints measured at t (theta, l_1..l_m, no
+/// velocities) and any part poses measured since (timestamped, late by the sensor's
+/// latency), estimates the state and returns
+///
+///   tau = sat( tau_ff(t + h/2) - K(t) (x_hat(t) - x_ref(t)) ),
+///
+/// tau_ff and x_ref from the plan's reference (feedback_schedule.h: held at rest after the
+/// plan's end), K the schedule's gain: a time-varying LQR on the planned mode's manifold
+/// when the cell senses the part, the joint PD of a cell that does not. sat clamps each
+/// input to the cell's limit (tau_theta to +-torque_limit [N m], tau_i to +-force_limit [N]).
+///
+/// State estimate: an extended Kalman filter whose process model is the nominal simulator
+/// itself (the schedule's: the plan's cell and simulator settings, with its contact
+/// memory), so the estimate switches contact modes as the cell does, and whose gains are
+/// the schedule's (feedback_schedule.h):
+///   predict  x_hat <- one simulator step from x_hat under the input commanded,
+///   joints   x_hat <- x_hat + L_j (y_j - Theta_hat),
+///   part     at the sample's own time t_s the correction d = L_p (z - pose_hat(t_s))
+///            (angle wrapped) is carried to the present through the steps since, each
+///            d <- A_d d then d <- d - L_j H_j d (the joint updates since t_s saw the
+///            uncorrected estimate), and added to x_hat.
+/// The carrying is the prediction over the latency: a late pose still corrects the
+/// present. A sample older than the history (history_time) is dropped (counted).
+///
+/// Real time: compute() and addPartPose() allocate nothing; the buffers, and the
+/// estimator's simulator workspace, are allocated at construction. One ControlLaw per
+/// executing loop (it has state); the schedule it reads is shared.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rbsf/dynamics/feedback_schedule.h"
+#include "rbsf/dynamics/placement.h"
+
+namespace rbsf {
+
+/// \brief Error-state vector (q, v) of up to 2 kMaxConfig entries.
+using VecX = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2 * kMaxConfig, 1>;
+
+/// \brief Estimator and law of one execution of a plan (file comment).
+class ControlLaw {
+ public:
+  /// \param history_time how far back a part sample may be applied [s] (>= the latency).
+  explicit ControlLaw(const FeedbackSchedule& schedule, double history_time = 0.05);
+
+  /// \brief Start a new execution: the estimate is the reference at its start, at rest.
+  void reset();
+
+  /// \brief A part pose measured at plan time `stamp` [s]; applied at the next compute().
+  ///        At most `capacity` samples wait; more are dropped. Allocation-free.
+  void addPartPose(double stamp, const Pose& pose);
+
+  /// \brief The input for [t, t + h) from the joints measured at t (tau order, m + 1
+  ///        entries). Calls are expected every h (missed periods are predicted over).
+  ///        Allocation-free. \return true when an input was clamped to its limit.
+  bool compute(double t, const VecU& joints, VecU& tau);
+
+  /// \brief Tell the estimator that the input applied over the last computed period was
+  ///        `tau` instead of the law's (an override by the loop, e.g. a hold or a stop).
+  void recordApplied(const VecU& tau);
+
+  /// \brief The same law on a known state (q, v) instead of the estimate: for analysis and
+  ///        tests (what the law would do with perfect sensing). Does not touch the estimator.
+  bool computeFromState(double t, const VecQ& q, const VecQ& v, VecU& tau);
+
+  /// \brief The law's demand before clamping at the last compute() (tau order).
+  const VecU& demand() const { return demand_; }
+  /// \brief The state estimate at the last compute(): q and v (state_layout.h).
+  void estimate(VecQ& q, VecQ& v) const;
+  /// \brief Part samples dropped because they were older than the history or queued too
+  ///        many at once.
+  std::uint64_t droppedSamples() const { return dropped_; }
+
+  const FeedbackSchedule& schedule() const { return schedule_; }
+
+ private:
+  /// \brief What the estimator remembers of one control step.
+  struct Entry {
+    double t = 0.0;
+    int knot = 0;
+    Eigen::Vector3d pose;  ///< estimated (x, y, phi) at t, after every correction so far
+  };
+  struct PartSample {
+    double stamp = 0.0;
+    Pose pose;
+  };
+
+  Entry& entry(long j) { return ring_[static_cast<std::size_t>(j % ring_.size())]; }
+  void jointUpdate(int knot, const VecU& joints);
+  void applyPartSample(const PartSample& s);
+  bool control(double t, int knot, const VecX& e, VecU& tau);
+
+  const FeedbackSchedule& schedule_;
+  std::unique_ptr<SimulatorWorkspace> ws_;
+  SimState state_;  ///< the estimate x_hat with the simulator's contact memory
+  VecU applied_;    ///< input commanded over the last period
+  std::vector<Entry> ring_;
+  std::vector<PartSample> pending_;
+  int num_pending_ = 0;
+  long step_ = -1;  ///< index of the last computed step
+  VecU demand_;
+  VecX e_, d_;
+  ReferenceSample at_, mid_;
+  std::uint64_t dropped_ = 0;
+};
+
+}  // namespace rbsf

@@ -1,0 +1,141 @@
+#pragma once
+/// \file
+/// \brief The gains of the control law (control_law.h) along one reference trajectory:
+///        a time-varying LQR on the planned mode's constraint manifold, the joint PD of a
+///        cell that does not see its part, and the Kalman gains of the state estimator.
+///
+/// Knots k = 0..K at t_k = t_0 + k D (D = gain_period rounded to whole control steps h)
+/// cover the plan and `settle_time` after it, in which the reference holds the plan's
+/// final pose at rest with the plan's last feed-forward input (reference()). At each knot
+/// the reference state is given its planned mode (mode_dynamics.h, referenceModes: the
+/// planned phase letter and the contacts within touch_gap) and that mode is linearised
+/// (ModeDynamics::linearize): A, B and the tangent basis P of the mode's state manifold.
+/// Over the knot's interval the step map of h is A_d = I + hA + h^2 A^2 / 2,
+/// B_d = hB + h^2 AB / 2.
+///
+/// LQR (part_pose sensed). Error x - x_ref in manifold coordinates z = P^T (x - x_ref),
+/// cost sum z^T P^T Q P z + du^T R du with Bryson weights Q = diag(1 / tolerated error^2)
+/// and R = diag(1 / (input_fraction x limit)^2); backward Riccati over every control step
+/// of the horizon (the knots and horizon_tail more at the final knot's linearisation),
+/// mapping the cost-to-go across knots by P_k^T P_k+1 (the manifold changes with the mode).
+/// The gain of knot k in full coordinates is K_k P_k^T: du = -K_k P_k^T (x - x_ref).
+///
+/// Joint PD (part_pose: none). du = -K (x - x_ref) with K non-zero only on the joints:
+/// Kp_j = I_j omega_n^2, Kd_j = 2 zeta omega_n I_j, I_j the joint's effective inertia at
+/// the reference start with the part held (base: M_R[0,0] + I_o + m_o |(x, y)|^2; finger:
+/// m_i + m_o / m), the coupling M_R[0,i] left out: the cell's joint servo of before.
+///
+/// Kalman gains. A forward covariance pass over every control step with the step maps
+/// above, process noise on accelerations (part_acceleration, part_angular_acceleration,
+/// joint_acceleration) and on positions (drift_speed, so a contact that slips where the
+/// plan sticks can be followed), joint measurements every step (sensing joints noise) and,
+/// when sensed, part poses at the sensor's rate (its noise). The gain of each knot is the
+/// one of its first step (joints) and of its first part sample (part).
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rbsf/dynamics/mode_dynamics.h"
+#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/reference_trajectory.h"
+#include "rbsf/dynamics/sensing.h"
+
+namespace rbsf {
+
+/// \brief Settings of the gains; defaults documented in the file comment.
+struct FeedbackSettings {
+  double gain_period = 0.01;  ///< knot spacing D [s]
+  double settle_time = 0.5;   ///< hold at rest after the plan's end [s]
+  double horizon_tail = 1.0;  ///< Riccati horizon beyond the last knot [s]
+  double touch_gap = 5e-4;    ///< a reference contact within this gap touches [m]
+  /// \brief A contact is a constraint of the planned mode only when the reference presses
+  ///        it with at least this fraction of the part's weight.
+  double min_normal_force = 0.02;
+  // LQR: tolerated errors (Bryson's rule).
+  double position = 0.005;            ///< part x, y [m]
+  double angle = 1.0 * M_PI / 180.0;  ///< part phi [rad]
+  double base_angle = 0.01;           ///< theta [rad]
+  double stroke = 0.002;              ///< l_i [m]
+  double speed = 0.05;                ///< part x', y' [m/s]
+  double angular_speed = 0.2;         ///< part phi' [rad/s]
+  double base_rate = 0.2;             ///< theta' [rad/s]
+  double stroke_speed = 0.05;         ///< l_i' [m/s]
+  double input_fraction = 0.02;       ///< tolerated input, fraction of its limit
+  // Joint PD (part_pose: none).
+  double natural_frequency = 30.0;  ///< omega_n [rad/s]
+  double damping_ratio = 1.0;       ///< zeta
+  // Kalman filter: process noise intensities [unit / s^2 / sqrt(Hz)] and drift [unit / s /
+  // sqrt(Hz)].
+  double part_acceleration = 0.2;          ///< part x, y [m/s^2]
+  double part_angular_acceleration = 0.5;  ///< part phi [rad/s^2]
+  double joint_acceleration = 0.5;         ///< theta [rad/s^2], l_i [m/s^2]
+  double drift_speed = 1e-4;               ///< every position [m/s or rad/s]
+  /// \brief Part accelerations outside the planned mode (contacts slipping or sticking
+  ///        unlike the plan), on x, y [m/s^2] and phi [rad/s^2] alike.
+  double slip_acceleration = 0.1;
+};
+
+/// \brief Gains and step maps at the knots; immutable once built, one per plan and
+///        sensing, shared by any number of ControlLaw instances and threads.
+class FeedbackSchedule {
+ public:
+  /// \brief Build every gain (off-line: allocates, about 0.1 s for a 5 s plan).
+  /// \param simulator the settings of the simulator the plan was made with; its time step
+  ///        is the control period h [s].
+  /// \throws InputError for a reference not ready, a non-positive step or bad settings.
+  FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory reference, const Sensing& sensing,
+                   const SimulatorSettings& simulator, const FeedbackSettings& settings = {});
+
+  const RbsfModel& model() const { return model_; }
+  /// \brief The nominal simulator (the plan's settings): the estimator's process model.
+  const Simulator& simulator() const { return simulator_; }
+  const Sensing& sensing() const { return sensing_; }
+  const FeedbackSettings& settings() const { return settings_; }
+  double timeStep() const { return h_; }
+  /// \brief True when the gains feed back the part's pose (LQR), false for joint PD.
+  bool partFeedback() const { return sensing_.part_pose.present; }
+
+  /// \brief The reference at t (reference_trajectory.h) up to the plan's end, then its
+  ///        final pose at rest with the last input. Allocation-free.
+  void reference(double t, ReferenceSample& out) const;
+  /// \brief Start and end of the plan [s], and end of the settle hold.
+  double planStart() const { return reference_.startTime(); }
+  double planEnd() const { return reference_.endTime(); }
+  double holdEnd() const { return reference_.endTime() + settings_.settle_time; }
+
+  /// \brief Knot whose interval holds t (clamped to the knots).
+  int knotAt(double t) const;
+  int numKnots() const { return static_cast<int>(Ad_.size()); }
+  /// \brief Step map of one control step at knot k: 2n x 2n and 2n x (m + 1).
+  const Eigen::MatrixXd& Ad(int k) const { return Ad_[k]; }
+  const Eigen::MatrixXd& Bd(int k) const { return Bd_[k]; }
+  /// \brief Feedback gain at knot k, (m + 1) x 2n: du = -gain (x - x_ref).
+  const Eigen::MatrixXd& gain(int k) const { return K_[k]; }
+  /// \brief Kalman gains at knot k: joints 2n x (m + 1), part 2n x 3 (empty if not sensed).
+  const Eigen::MatrixXd& jointGain(int k) const { return Lj_[k]; }
+  const Eigen::MatrixXd& partGain(int k) const { return Lp_[k]; }
+  /// \brief The planned modes of knot k.
+  const ContactModes& modes(int k) const { return modes_[k]; }
+
+ private:
+  void computeLqr(const std::vector<Eigen::MatrixXd>& tangent);
+  void computePd();
+  void computeKalman();
+  ContactModes plannedModes(double t, SimulatorWorkspace& ws) const;
+
+  const RbsfModel& model_;
+  Simulator simulator_;
+  ReferenceTrajectory reference_;
+  Sensing sensing_;
+  double h_;
+  FeedbackSettings settings_;
+  int steps_per_knot_ = 10;
+  double t0_ = 0.0;
+  VecQ hold_q_;
+  VecU hold_tau_;
+  std::vector<Eigen::MatrixXd> Ad_, Bd_, F_, K_, Lj_, Lp_;
+  std::vector<ContactModes> modes_;
+};
+
+}  // namespace rbsf

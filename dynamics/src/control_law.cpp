@@ -1,0 +1,172 @@
+#include "rbsf/dynamics/control_law.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/state_layout.h"
+
+namespace rbsf {
+
+namespace {
+
+/// Part samples that may wait for the next compute(): a sensor faster than the loop
+/// delivers a few per period at most.
+constexpr int kPendingCapacity = 16;
+
+}  // namespace
+
+ControlLaw::ControlLaw(const FeedbackSchedule& schedule, double history_time)
+    : schedule_(schedule),
+      ws_(std::make_unique<SimulatorWorkspace>(schedule.model().numFingers())),
+      state_(VecQ::Zero(schedule.model().configDim()), VecQ::Zero(schedule.model().configDim())) {
+  const double h = schedule.timeStep();
+  if (!(std::isfinite(history_time) && history_time >= 0.0))
+    throw InputError("control law: history_time must be finite and non-negative");
+  const int n = schedule.model().configDim(), nu = schedule.model().controlDim();
+  ring_.resize(static_cast<std::size_t>(std::ceil(history_time / h)) + 2);
+  pending_.resize(kPendingCapacity);
+  applied_ = VecU::Zero(nu);
+  demand_ = VecU::Zero(nu);
+  e_ = VecX::Zero(2 * n);
+  d_ = VecX::Zero(2 * n);
+  at_.q = VecQ::Zero(n);
+  at_.v = VecQ::Zero(n);
+  at_.tau = VecU::Zero(nu);
+  mid_ = at_;
+}
+
+void ControlLaw::reset() {
+  step_ = -1;
+  num_pending_ = 0;
+  dropped_ = 0;
+  demand_.setZero();
+  applied_.setZero();
+}
+
+void ControlLaw::addPartPose(double stamp, const Pose& pose) {
+  if (!schedule_.partFeedback() || num_pending_ >= kPendingCapacity || !std::isfinite(stamp) ||
+      !std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.phi)) {
+    ++dropped_;
+    return;
+  }
+  pending_[num_pending_++] = {stamp, pose};
+}
+
+void ControlLaw::jointUpdate(int knot, const VecU& joints) {
+  const int n = schedule_.model().configDim();
+  VecU r = joints;
+  for (int j = 0; j < r.size(); ++j) r[j] -= state_.q[layout::inputToConfig(j)];
+  d_.noalias() = schedule_.jointGain(knot) * r;
+  state_.q += d_.head(n);
+  state_.v += d_.tail(n);
+}
+
+void ControlLaw::applyPartSample(const PartSample& s) {
+  const double h = schedule_.timeStep();
+  const int n = schedule_.model().configDim();
+  const long back = std::max(0L, std::lround((entry(step_).t - s.stamp) / h));
+  if (back > step_ || back + 1 >= static_cast<long>(ring_.size())) {
+    ++dropped_;
+    return;
+  }
+  const long i = step_ - back;
+  Entry& at = entry(i);
+  const Eigen::Vector3d r(s.pose.x - at.pose[0], s.pose.y - at.pose[1],
+                          std::remainder(s.pose.phi - at.pose[2], 2.0 * M_PI));
+  d_.noalias() = schedule_.partGain(at.knot) * r;
+  at.pose += Eigen::Vector3d(d_[layout::kX], d_[layout::kY], d_[layout::kPhi]);
+  for (long j = i + 1; j <= step_; ++j) {
+    // Carry the correction one step, then take off what the joint update of that step
+    // would have removed had it seen the corrected estimate.
+    Entry& next = entry(j);
+    e_.noalias() = schedule_.Ad(entry(j - 1).knot) * d_;
+    const Eigen::MatrixXd& L = schedule_.jointGain(next.knot);
+    VecU hd(L.cols());
+    for (int c = 0; c < hd.size(); ++c) hd[c] = e_[layout::inputToConfig(c)];
+    d_.noalias() = e_ - L * hd;
+    next.pose += Eigen::Vector3d(d_[layout::kX], d_[layout::kY], d_[layout::kPhi]);
+  }
+  state_.q += d_.head(n);
+  state_.v += d_.tail(n);
+  // Sticking contacts re-anchor where the corrected estimate puts them: the simulator's
+  // drift correction would otherwise pull the part back to the old anchor.
+  state_.anchored.fill(false);
+}
+
+bool ControlLaw::compute(double t, const VecU& joints, VecU& tau) {
+  const double h = schedule_.timeStep();
+  const int n = schedule_.model().configDim();
+  if (step_ < 0) {
+    schedule_.reference(t, at_);
+    state_ = SimState(at_.q, VecQ::Zero(n));
+    state_.t = t;
+    step_ = 0;
+  } else {
+    const long advance = std::max(1L, std::lround((t - entry(step_).t) / h));
+    for (long a = 0; a < advance; ++a) {
+      schedule_.simulator().step(state_, applied_, *ws_);
+      Entry& next = entry(++step_);
+      next.t = entry(step_ - 1).t + h;
+      next.knot = schedule_.knotAt(next.t);
+      next.pose =
+          Eigen::Vector3d(state_.q[layout::kX], state_.q[layout::kY], state_.q[layout::kPhi]);
+    }
+  }
+  Entry& cur = entry(step_);
+  cur.t = t;
+  cur.knot = schedule_.knotAt(t);
+  jointUpdate(cur.knot, joints);
+  cur.pose = Eigen::Vector3d(state_.q[layout::kX], state_.q[layout::kY], state_.q[layout::kPhi]);
+  for (int p = 0; p < num_pending_; ++p) applyPartSample(pending_[p]);
+  num_pending_ = 0;
+
+  schedule_.reference(t, at_);
+  e_.head(n) = state_.q - at_.q;
+  e_.tail(n) = state_.v - at_.v;
+  const bool clamped = control(t, cur.knot, e_, tau);
+  applied_ = tau;
+  return clamped;
+}
+
+bool ControlLaw::computeFromState(double t, const VecQ& q, const VecQ& v, VecU& tau) {
+  const int n = schedule_.model().configDim();
+  schedule_.reference(t, at_);
+  VecX e(2 * n);
+  e.head(n) = q - at_.q;
+  e.tail(n) = v - at_.v;
+  return control(t, schedule_.knotAt(t), e, tau);
+}
+
+bool ControlLaw::control(double t, int knot, const VecX& e, VecU& tau) {
+  const int nu = schedule_.model().controlDim();
+  schedule_.reference(t + 0.5 * schedule_.timeStep(), mid_);
+  demand_ = mid_.tau;
+  demand_.noalias() -= schedule_.gain(knot) * e;
+  const Cell& c = schedule_.model().cell();
+  tau.resize(nu);
+  bool clamped = false;
+  for (int j = 0; j < nu; ++j) {
+    const double limit =
+        j == layout::kTauTheta ? c.base.torque_limit : c.fingers[j - 1].force_limit;
+    tau[j] = std::clamp(demand_[j], -limit, limit);
+    clamped = clamped || tau[j] != demand_[j];
+  }
+  return clamped;
+}
+
+void ControlLaw::recordApplied(const VecU& tau) { applied_ = tau; }
+
+void ControlLaw::estimate(VecQ& q, VecQ& v) const {
+  if (step_ < 0) {
+    ReferenceSample r;
+    schedule_.reference(schedule_.planStart(), r);
+    q = r.q;
+    v = VecQ::Zero(r.q.size());
+    return;
+  }
+  q = state_.q;
+  v = state_.v;
+}
+
+}  // namespace rbsf
