@@ -18,25 +18,6 @@ using MatRRd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows
 
 }  // namespace
 
-ContactModes referenceModes(const RbsfModel& model, const VecQ& q, const VecQ& v, ModelData& data,
-                            double touch_gap, double stick_slip) {
-  model.updateContacts(q, data);
-  ContactModes modes;
-  modes.fill(ContactMode::kSeparated);
-  for (int i = 0; i < model.numFingers(); ++i) {
-    if (!(data.contacts[i].gap <= touch_gap)) continue;
-    modes[i] =
-        std::abs(data.T.col(i).dot(v)) <= stick_slip ? ContactMode::kStick : ContactMode::kSlide;
-  }
-  return modes;
-}
-
-std::string modesText(const ContactModes& modes, int m) {
-  std::string text;
-  for (int i = 0; i < m; ++i) text += (i ? "," : "") + std::string(toString(modes[i]));
-  return text;
-}
-
 ModeDynamics::ModeDynamics(const RbsfModel& model, double regularization)
     : model_(model), regularization_(regularization) {
   if (!(regularization >= 0.0 && std::isfinite(regularization)))

@@ -6,31 +6,39 @@
 ///
 /// Knots k = 0..K at t_k = t_0 + k D (D = gain_period rounded to whole control steps h)
 /// cover the plan and `settle_time` after it, in which the reference holds the plan's
-/// final pose at rest with the plan's last feed-forward input (reference()). At each knot
-/// the reference state is given its planned mode (mode_dynamics.h, referenceModes: the
-/// planned phase letter and the contacts within touch_gap) and that mode is linearised
-/// (ModeDynamics::linearize): A, B and the tangent basis P of the mode's state manifold.
-/// Over the knot's interval the step map of h is A_d = I + hA + h^2 A^2 / 2,
+/// final pose at rest with the plan's last input (reference()). Each knot's reference
+/// state gets its planned mode from one simulator step taken from it under the plan's
+/// input (contacts remembered sliding where the reference slips them), with two
+/// corrections: a contact pressed with less than min_normal_force x the part's weight is
+/// no constraint (a gain that pulled on it would open it), and a contact without friction
+/// slides. That mode is linearised (mode_dynamics.h): A, B, F and the tangent basis P of
+/// its state manifold; over the knot the step map of h is A_d = I + hA + h^2 A^2 / 2,
 /// B_d = hB + h^2 AB / 2.
 ///
-/// LQR (part_pose sensed). Error x - x_ref in manifold coordinates z = P^T (x - x_ref),
-/// cost sum z^T P^T Q P z + du^T R du with Bryson weights Q = diag(1 / tolerated error^2)
-/// and R = diag(1 / (input_fraction x limit)^2); backward Riccati over every control step
-/// of the horizon (the knots and horizon_tail more at the final knot's linearisation),
-/// mapping the cost-to-go across knots by P_k^T P_k+1 (the manifold changes with the mode).
-/// The gain of knot k in full coordinates is K_k P_k^T: du = -K_k P_k^T (x - x_ref).
+/// LQR (part_pose sensed). Error e = x - x_ref in manifold coordinates z = P^T e, cost
+/// sum z^T P^T Q P z + du^T R du with Bryson weights Q = diag(1 / tolerated error^2) and
+/// R = diag(1 / (input_fraction x limit)^2); a backward Riccati recursion over every control
+/// step (horizon_tail more at the last knot), the cost-to-go carried across knots by
+/// P_k^T P_k+1 (the manifold changes with the mode). The gain of knot k in full
+/// coordinates is K_k P_k^T: du = -K_k P_k^T e.
 ///
-/// Joint PD (part_pose: none). du = -K (x - x_ref) with K non-zero only on the joints:
+/// Joint PD (part_pose: none). du = -K e with K non-zero only on the joints:
 /// Kp_j = I_j omega_n^2, Kd_j = 2 zeta omega_n I_j, I_j the joint's effective inertia at
 /// the reference start with the part held (base: M_R[0,0] + I_o + m_o |(x, y)|^2; finger:
-/// m_i + m_o / m), the coupling M_R[0,i] left out: the cell's joint servo of before.
+/// m_i + m_o / m), the coupling M_R[0,i] left out.
 ///
 /// Kalman gains. A forward covariance pass over every control step with the step maps
-/// above, process noise on accelerations (part_acceleration, part_angular_acceleration,
-/// joint_acceleration) and on positions (drift_speed, so a contact that slips where the
-/// plan sticks can be followed), joint measurements every step (sensing joints noise) and,
-/// when sensed, part poses at the sensor's rate (its noise). The gain of each knot is the
-/// one of its first step (joints) and of its first part sample (part).
+/// above, started from the covariance of a part resting at the start for 1 s; process
+/// noise: generalized forces through the mode's constraints (F, sized as accelerations
+/// M_kk x part_acceleration, part_angular_acceleration, joint_acceleration), part
+/// accelerations outside the mode (slip_acceleration) and position drift (drift_speed);
+/// joint measurements every step and, when sensed, part poses at the sensor's rate, with
+/// the sensing's noise. Each knot keeps the joint gain of its first step and the part gain
+/// a sample at its first step would get.
+///
+/// Tuning (BENCHMARKS.md): the defaults hold a part balanced on two frictionless tips
+/// under the default sensing; gains four times stiffer (input_fraction) or process noise a
+/// third as large lose it to the camera's noise.
 
 #include <vector>
 
@@ -80,7 +88,7 @@ struct FeedbackSettings {
 ///        sensing, shared by any number of ControlLaw instances and threads.
 class FeedbackSchedule {
  public:
-  /// \brief Build every gain (off-line: allocates, about 0.1 s for a 5 s plan).
+  /// \brief Build every gain (off-line: allocates; tens of milliseconds for a 5 s plan).
   /// \param simulator the settings of the simulator the plan was made with; its time step
   ///        is the control period h [s].
   /// \throws InputError for a reference not ready, a non-positive step or bad settings.

@@ -45,17 +45,6 @@ namespace rbsf {
 /// \brief Mode of every contact (finger order); entries beyond m are ignored.
 using ContactModes = std::array<ContactMode, kMaxFingers>;
 
-/// \brief The modes a reference state is in, read off its kinematics: a contact touches
-///        when its gap at q is at most `touch_gap` [m], and sticks when its slip speed
-///        |T_i^T v| is at most `stick_slip` [m/s] (it slides otherwise). The state's own
-///        motion, not a phase label: a label is a segment's majority and misses the steps
-///        where a contact has already let go.
-ContactModes referenceModes(const RbsfModel& model, const VecQ& q, const VecQ& v, ModelData& data,
-                            double touch_gap = 5e-4, double stick_slip = 2e-3);
-
-/// \brief "stick", "slide" or "separated" per finger, e.g. "stick,slide,separated".
-std::string modesText(const ContactModes& modes, int m);
-
 /// \brief Linearisation of one mode at one state (file comment). Heap matrices: built
 ///        off-line, never on a real-time path.
 struct ModeLinearization {
