@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rbsf/dynamics/sensing.h"
 #include "rbsf/dynamics/shape.h"
 
 namespace rbsf {
@@ -50,7 +51,9 @@ struct Cell {
   std::vector<FingerParams> fingers;
   ObjectParams object;
   FrictionParams friction;
-  std::string name;  ///< file name or label, for messages
+  Sensing sensing;          ///< what the cell measures (sensing.h; defaults when absent)
+  Uncertainty uncertainty;  ///< what a plan must tolerate (sensing.h; defaults when absent)
+  std::string name;         ///< file name or label, for messages
 
   /// \brief Number of fingers m.
   int numFingers() const { return static_cast<int>(fingers.size()); }
