@@ -9,6 +9,7 @@
 
 #include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/rollout.h"
 
 namespace rbsf::planner {
 
@@ -47,40 +48,44 @@ std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ&
                                          std::vector<PlanSegment>& segments, int sample_steps,
                                          std::vector<SimState>* ends) {
   const int m = simulator.model().numFingers();
-  SimState state(q0, VecQ::Zero(q0.size()));
+  const SimState start(q0, VecQ::Zero(q0.size()));
+  SimState state = start;
   SimulatorWorkspace ws(m);
-  StepReport report;
   std::vector<PlanSample> samples;
-  auto record = [&](const VecU& tau, Phase phase) {
+  auto record = [&](const SimState& at, const VecU& tau, const StepReport& report, Phase phase) {
     PlanSample s;
-    s.t = state.t;
-    s.q = state.q;
-    s.v = state.v;
+    s.t = at.t;
+    s.q = at.q;
+    s.v = at.v;
     s.tau = tau;
     s.f_n = VecC(m);
     for (int i = 0; i < m; ++i) s.f_n[i] = report.contacts[i].f_n;
     s.phase = phase;
     samples.push_back(std::move(s));
   };
-  long step = 0;
-  for (PlanSegment& seg : segments) {
-    PhaseCounts count{};
-    for (int k = 0; k < seg.steps; ++k) {
-      simulator.step(state, seg.tau, ws, &report);
-      const Phase ph = report.phase == Phase::kUnsupported ? Phase::kU : report.phase;
-      ++count[static_cast<int>(ph)];
-      ++step;
-      if (samples.empty()) {  // t = 0: the start at rest, with the first step's tau
-        SimState now = state;
-        state = SimState(q0, VecQ::Zero(q0.size()));
-        record(seg.tau, ph);
-        state = now;
-      }
-      if (step % sample_steps == 0 || k + 1 == seg.steps) record(seg.tau, ph);
-    }
-    seg.phase = majorityPhase(count);
-    if (ends) ends->push_back(state);
+  std::vector<long> steps;
+  std::vector<VecU> taus;
+  for (const PlanSegment& seg : segments) {
+    steps.push_back(seg.steps);
+    taus.push_back(seg.tau);
   }
+  HeldInputs inputs(steps, taus);
+  PhaseCounts count{};
+  rollout(simulator, state, inputs.totalSteps(), ws, inputs,
+          [&](const SimState& now, const StepReport& report, const VecU& tau, long n) {
+            const Phase ph = report.phase == Phase::kUnsupported ? Phase::kU : report.phase;
+            ++count[static_cast<int>(ph)];
+            // t = 0: the start at rest, with the first step's tau, forces and phase.
+            if (n == 0) record(start, tau, report, ph);
+            const bool end = inputs.endsSegment(n);
+            if ((n + 1) % sample_steps == 0 || end) record(now, tau, report, ph);
+            if (end) {
+              segments[inputs.segment()].phase = majorityPhase(count);
+              count.fill(0);
+              if (ends) ends->push_back(now);
+            }
+            return true;
+          });
   return samples;
 }
 

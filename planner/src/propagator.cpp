@@ -7,6 +7,7 @@
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/rollout.h"
 
 namespace rbsf::planner {
 
@@ -39,22 +40,28 @@ void SimPropagator::propagate(const ompl::base::State* state, const oc::Control*
   const double mu = simulator_.model().cell().friction.mu_static;
   std::array<ContactMode, kMaxFingers> held = sim.mode;  // what settle_steps = 0 keeps
   bool decisive = true;
-  long k = 0;
-  while (k < n && decisive) {
-    simulator_.step(sim, tau, ws_, rule_.enabled ? &report_ : nullptr);
-    ++k;
-    if (!sim.q.allFinite() || !sim.v.allFinite()) break;  // the validity checker refuses it
-    if (!rule_.enabled || k < rule_.settle_steps) continue;
-    if (k == rule_.settle_steps) {
-      held = sim.mode;
-      continue;
-    }
-    for (int i = 0; i < m_ && decisive; ++i) {
-      const ContactStepReport& c = report_.contacts[i];
-      decisive = c.mode == held[i] && (c.mode != ContactMode::kStick ||
-                                       std::abs(c.f_t) <= rule_.cone_margin * mu * c.f_n);
-    }
-  }
+  const bool rule = rule_.enabled;
+  const long k = rollout(
+      simulator_, sim, n, ws_,
+      [&](const SimState&, long, VecU& in) {
+        in = tau;
+        return true;
+      },
+      [&](const SimState& now, const StepReport& report, const VecU&, long step) {
+        if (!now.q.allFinite() || !now.v.allFinite()) return false;  // the checker refuses it
+        const long done = step + 1;
+        if (!rule || done < rule_.settle_steps) return true;
+        if (done == rule_.settle_steps) {
+          held = now.mode;
+          return true;
+        }
+        for (int i = 0; i < m_ && decisive; ++i) {
+          const ContactStepReport& c = report.contacts[i];
+          decisive = c.mode == held[i] && (c.mode != ContactMode::kStick ||
+                                           std::abs(c.f_t) <= rule_.cone_margin * mu * c.f_n);
+        }
+        return decisive;
+      });
   space_.fromSim(sim, result);
   // A refused step ends where the rule broke: its state is never used.
   static_cast<SimStateSpace::StateType*>(result)->decisive = decisive;

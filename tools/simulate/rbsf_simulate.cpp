@@ -17,6 +17,7 @@
 #include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/rollout.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/controls_file.h"
@@ -184,38 +185,38 @@ int run(int argc, char** argv) {
   const Simulator sim(model, settings);
   SimulatorWorkspace ws(m);
   SimState state(q0, VecQ::Zero(m + 4));
-  StepReport report;
   Summary summary;
   TrajectorySample sample;
   std::vector<TrajectorySample> frames;  // for --svg
   const long frame_stride = std::max(1L, std::lround(kSvgFrameTime / h));
-  long total = 0;
-  for (std::size_t j = 0; j < steps.size(); ++j) {
-    const VecU tau = schedule.segments()[j].tau;
-    for (long k = 0; k < steps[j]; ++k, ++total) {
-      sim.step(state, tau, ws, &report);
-      if (!state.q.allFinite() || !state.v.allFinite())
-        throw std::runtime_error("the simulation diverged at t = " + std::to_string(state.t) +
-                                 " s");
-      summary.add(report, state.t, m);
-      sample.t = state.t;
-      sample.q = state.q;
-      sample.v = state.v;
-      sample.tau = tau;
-      sample.f_n.resize(m);
-      for (int i = 0; i < m; ++i) sample.f_n[i] = report.contacts[i].f_n;
-      sample.phase = report.phase;
-      if (writer) writer->add(sample);
-      if (!o.svg.empty()) {
-        if (frames.empty()) {  // t = 0: the start at rest, with the first step's forces
-          frames.push_back(sample);
-          frames.back().t = 0.0, frames.back().q = q0, frames.back().v.setZero();
-        }
-        const bool last = j + 1 == steps.size() && k + 1 == steps[j];
-        if ((total + 1) % frame_stride == 0 || last) frames.push_back(sample);
-      }
-    }
-  }
+  std::vector<VecU> taus;
+  for (const auto& seg : schedule.segments()) taus.push_back(seg.tau);
+  HeldInputs inputs(steps, taus);
+  const long last = inputs.totalSteps() - 1;
+  const long total =
+      rollout(sim, state, inputs.totalSteps(), ws, inputs,
+              [&](const SimState& now, const StepReport& report, const VecU& tau, long n) {
+                if (!now.q.allFinite() || !now.v.allFinite())
+                  throw std::runtime_error(
+                      "the simulation diverged at t = " + std::to_string(now.t) + " s");
+                summary.add(report, now.t, m);
+                sample.t = now.t;
+                sample.q = now.q;
+                sample.v = now.v;
+                sample.tau = tau;
+                sample.f_n.resize(m);
+                for (int i = 0; i < m; ++i) sample.f_n[i] = report.contacts[i].f_n;
+                sample.phase = report.phase;
+                if (writer) writer->add(sample);
+                if (!o.svg.empty()) {
+                  if (frames.empty()) {  // t = 0: the start at rest, with the first step's forces
+                    frames.push_back(sample);
+                    frames.back().t = 0.0, frames.back().q = q0, frames.back().v.setZero();
+                  }
+                  if ((n + 1) % frame_stride == 0 || n == last) frames.push_back(sample);
+                }
+                return true;
+              });
   // Everything is formatted before any file is written; each file is written atomically.
   std::string svg;
   if (!o.svg.empty()) {

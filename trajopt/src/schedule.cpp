@@ -1,5 +1,7 @@
 #include "rbsf/trajopt/schedule.h"
 
+#include "rbsf/dynamics/rollout.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -31,12 +33,16 @@ bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int interv
     why = "the plan has no segments";
     return false;
   }
+  for (const planner::PlanSegment& seg : plan.segments)
+    if (seg.steps < 1) {
+      why = "a segment of the plan holds no simulator step";
+      return false;
+    }
   SimulatorSettings ss;
   ss.time_step = plan.time_step;
   const Simulator sim(model, ss);
   SimulatorWorkspace ws(m);
   SimState state(plan.q0, VecQ::Zero(plan.q0.size()));
-  StepReport report;
   ModelData data(m);
   SimulatedSteps& steps = schedule.steps;
   steps.t.push_back(0.0);
@@ -51,21 +57,31 @@ bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int interv
   std::vector<VecC> xi_at;
   model.updateContacts(state.q, data);
   xi_at.push_back(data.xi_hint);
-  for (int s = 0; s < S; ++s) {
-    const planner::PlanSegment& seg = plan.segments[s];
-    const double h = seg.duration / std::max(1, seg.steps);
-    for (auto& c : seg_counts[s]) c.fill(0);
-    for (int k = 0; k < seg.steps; ++k) {
-      sim.step(state, seg.tau, ws, &report);
-      for (int i = 0; i < m; ++i) ++seg_counts[s][i][static_cast<int>(report.contacts[i].mode)];
-      steps.contacts.push_back(report.contacts);
-      steps.t.push_back(steps.t.back() + h);
-      steps.q.push_back(state.q);
-      steps.v.push_back(state.v);
-    }
-    model.updateContacts(state.q, data);
-    xi_at.push_back(data.xi_hint);
+  std::vector<long> seg_steps;
+  std::vector<VecU> seg_tau;
+  for (const planner::PlanSegment& seg : plan.segments) {
+    seg_steps.push_back(seg.steps);
+    seg_tau.push_back(seg.tau);
   }
+  for (auto& c : seg_counts)
+    for (auto& ci : c) ci.fill(0);
+  HeldInputs inputs(seg_steps, seg_tau);
+  rollout(sim, state, inputs.totalSteps(), ws, inputs,
+          [&](const SimState& now, const StepReport& report, const VecU&, long n) {
+            const std::size_t s = inputs.segment();
+            const planner::PlanSegment& seg = plan.segments[s];
+            for (int i = 0; i < m; ++i)
+              ++seg_counts[s][i][static_cast<int>(report.contacts[i].mode)];
+            steps.contacts.push_back(report.contacts);
+            steps.t.push_back(steps.t.back() + seg.duration / std::max(1, seg.steps));
+            steps.q.push_back(now.q);
+            steps.v.push_back(now.v);
+            if (inputs.endsSegment(n)) {
+              model.updateContacts(now.q, data);
+              xi_at.push_back(data.xi_hint);
+            }
+            return true;
+          });
   // The mode a contact held for most of a segment.
   auto segmentModes = [&](int s) {
     std::array<int, kMaxFingers> key{};

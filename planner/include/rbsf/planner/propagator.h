@@ -62,7 +62,6 @@ class SimPropagator : public ompl::control::StatePropagator {
   int m_;
   DecisiveModes rule_;
   mutable SimulatorWorkspace ws_;
-  mutable StepReport report_;
   mutable std::uint64_t propagations_ = 0;
   mutable std::uint64_t steps_ = 0;
   mutable std::uint64_t indecisive_ = 0;
