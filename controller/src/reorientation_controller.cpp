@@ -59,7 +59,7 @@ struct PublishedPlan {
                 const TrackingSettings& tracking_settings)
       : id(id_),
         duration(plan.duration()),
-        time_step(plan.time_step),
+        time_step(plan.simulator.time_step),
         q0(plan.q0),
         reference(planner::makeReference(plan)),
         tracking(model, plan.q0, tracking_settings) {}

@@ -375,4 +375,16 @@ double SuperellipseShape::boundingRadius() const { return center_.norm() + std::
 
 double SuperellipseShape::minCurvatureRadius() const { return min_curvature_radius_; }
 
+std::shared_ptr<const Shape> EllipseShape::shifted(const Vec2& d) const {
+  return std::make_shared<EllipseShape>(a_, b_, center_ + d);
+}
+
+std::shared_ptr<const Shape> CircleShape::shifted(const Vec2& d) const {
+  return std::make_shared<CircleShape>(r_, center_ + d);
+}
+
+std::shared_ptr<const Shape> SuperellipseShape::shifted(const Vec2& d) const {
+  return std::make_shared<SuperellipseShape>(a_, b_, n_, center_ + d);
+}
+
 }  // namespace rbsf

@@ -93,6 +93,10 @@ SimulatorWorkspace::SimulatorWorkspace(int m)
 
 Simulator::Simulator(const RbsfModel& model, const SimulatorSettings& s)
     : model_(model), settings_(s) {
+  checkSettings(s);
+}
+
+void Simulator::checkSettings(const SimulatorSettings& s) {
   if (!(std::isfinite(s.time_step) && s.time_step > 0.0))
     throw InputError("simulator: time step must be positive and finite");
   if (!(s.contact_tolerance >= 0.0 && s.activation_distance >= s.contact_tolerance &&

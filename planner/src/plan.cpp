@@ -163,7 +163,13 @@ std::string planJsonText(const Plan& plan, const PlanFileOptions& options) {
   if (options.wall_clock) j["planning_time"] = plan.planning_time;
   j["propagations"] = plan.propagations;
   j["goal_distance"] = plan.goal_distance;
-  j["time_step"] = plan.time_step;
+  j["time_step"] = plan.simulator.time_step;
+  const SimulatorSettings& ss = plan.simulator;
+  j["simulator"] = {
+      {"activation_distance", ss.activation_distance}, {"contact_tolerance", ss.contact_tolerance},
+      {"slip_tolerance", ss.slip_tolerance},           {"regularization", ss.regularization},
+      {"curvature_terms", ss.curvature_terms},         {"drift_correction", ss.drift_correction},
+      {"max_mode_iterations", ss.max_mode_iterations}};
   j["steps_per_control"] = plan.steps_per_control;
   j["start"] = poseJson(plan.start);
   j["start_theta"] = plan.start_theta;
@@ -275,8 +281,27 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
     if (j.contains("planning_time")) plan.planning_time = num(j, "planning_time", "");
     plan.propagations = integer(j, "propagations", "", 0, 1e18);
     plan.goal_distance = num(j, "goal_distance", "");
-    plan.time_step = num(j, "time_step", "");
-    if (plan.time_step <= 0.0) throw InputError(path + ": time_step must be positive");
+    SimulatorSettings& ss = plan.simulator;
+    ss.time_step = num(j, "time_step", "");
+    if (ss.time_step <= 0.0) throw InputError(path + ": time_step must be positive");
+    if (j.contains("simulator")) {
+      const json& sj = j.at("simulator");
+      const std::string w = "simulator";
+      if (sj.contains("activation_distance"))
+        ss.activation_distance = num(sj, "activation_distance", w);
+      if (sj.contains("contact_tolerance")) ss.contact_tolerance = num(sj, "contact_tolerance", w);
+      if (sj.contains("slip_tolerance")) ss.slip_tolerance = num(sj, "slip_tolerance", w);
+      if (sj.contains("regularization")) ss.regularization = num(sj, "regularization", w);
+      if (sj.contains("curvature_terms")) ss.curvature_terms = boolean(sj, "curvature_terms", w);
+      if (sj.contains("drift_correction")) ss.drift_correction = boolean(sj, "drift_correction", w);
+      if (sj.contains("max_mode_iterations"))
+        ss.max_mode_iterations = static_cast<int>(integer(sj, "max_mode_iterations", w, 0, 1000));
+      try {
+        Simulator::checkSettings(ss);
+      } catch (const InputError& e) {
+        throw InputError(path + ": " + e.what());
+      }
+    }
     plan.steps_per_control = static_cast<int>(integer(j, "steps_per_control", "", 1, 1e6));
     plan.start = pose("start");
     plan.goal = pose("goal");

@@ -200,7 +200,7 @@ bool ReorientationPlanner::makePlan(const Problem& problem, const PlannerSetup& 
   plan.seed = s.seed;
   plan.planning_time = planning_time;
   plan.propagations = setup.propagator->propagations();
-  plan.time_step = dt;
+  plan.simulator = s.simulator;
   plan.steps_per_control = s.steps_per_control;
   plan.start = problem.start;
   plan.start_theta = problem.start_theta;

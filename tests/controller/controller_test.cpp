@@ -106,7 +106,7 @@ TEST(ReorientationController, PlanCompletesAndSamplingReturnsItsKnots) {
   for (int k = 0; k <= 200; ++k) {
     const double t = k * plan.duration() / 200;
     reference.sample(t, at);
-    reference.sample(t + 0.5 * plan.time_step, mid);
+    reference.sample(t + 0.5 * plan.simulator.time_step, mid);
     at.tau = mid.tau;
     const VecQ q = at.q + VecQ::Constant(at.q.size(), 1e-3 * std::sin(k));
     const VecQ v = at.v + VecQ::Constant(at.v.size(), 1e-2 * std::cos(k));

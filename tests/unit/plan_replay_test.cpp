@@ -91,7 +91,7 @@ TEST_F(PlanReplayTest, DepartureIsWhereThePartFirstLeavesThePlannedPath) {
   std::size_t at = 0;
   for (; at + 1 < dropped.segments.size(); ++at) {
     end += dropped.segments[at].duration;
-    if (r.departure_time + 0.5 * dropped.time_step < end) break;
+    if (r.departure_time + 0.5 * dropped.simulator.time_step < end) break;
   }
   EXPECT_EQ(r.departure_phase, std::string(1, toString(dropped.segments[at].phase)[0]));
   ReplaySettings loose;

@@ -58,7 +58,7 @@ TEST_F(PlannerTest, SmallProblemSolvedExactlyAndReproducedByResimulation) {
   StepReport report;
   int touching_min = model.numFingers();
   for (const PlanSegment& seg : plan.segments) {
-    ASSERT_EQ(seg.steps, static_cast<int>(std::lround(seg.duration / plan.time_step)));
+    ASSERT_EQ(seg.steps, static_cast<int>(std::lround(seg.duration / plan.simulator.time_step)));
     for (int k = 0; k < seg.steps; ++k) {
       sim.step(state, seg.tau, ws, &report);
       qs.push_back(state.q);
@@ -90,7 +90,7 @@ TEST_F(PlannerTest, SmallProblemSolvedExactlyAndReproducedByResimulation) {
   EXPECT_GE(touching_min, 2);
   ASSERT_GE(plan.samples.size(), 2u);
   for (const PlanSample& s : plan.samples) {
-    const long k = std::lround(s.t / plan.time_step);
+    const long k = std::lround(s.t / plan.simulator.time_step);
     ASSERT_LT(k, static_cast<long>(qs.size()));
     EXPECT_LE((s.q - qs[k]).cwiseAbs().maxCoeff(), 1e-9) << "t = " << s.t;
     EXPECT_LE((s.v - vs[k]).cwiseAbs().maxCoeff(), 1e-9) << "t = " << s.t;
@@ -171,6 +171,26 @@ TEST_F(PlannerTest, PlanFileRoundTrips) {
     EXPECT_TRUE(back.samples[k].f_n == plan.samples[k].f_n);
     EXPECT_EQ(back.samples[k].phase, plan.samples[k].phase);
   }
+  // The simulator's settings travel with the plan.
+  const SimulatorSettings& a = plan.simulator;
+  const SimulatorSettings& b = back.simulator;
+  EXPECT_EQ(b.time_step, a.time_step);
+  EXPECT_EQ(b.activation_distance, a.activation_distance);
+  EXPECT_EQ(b.contact_tolerance, a.contact_tolerance);
+  EXPECT_EQ(b.slip_tolerance, a.slip_tolerance);
+  EXPECT_EQ(b.regularization, a.regularization);
+  EXPECT_EQ(b.curvature_terms, a.curvature_terms);
+  EXPECT_EQ(b.drift_correction, a.drift_correction);
+  EXPECT_EQ(b.max_mode_iterations, a.max_mode_iterations);
+  Plan other = plan;
+  other.simulator.contact_tolerance = 2e-6;
+  other.simulator.curvature_terms = false;
+  other.simulator.max_mode_iterations = 5;
+  writePlanJson(other, path);
+  const Plan other_back = readPlanJson(path);
+  EXPECT_EQ(other_back.simulator.contact_tolerance, 2e-6);
+  EXPECT_FALSE(other_back.simulator.curvature_terms);
+  EXPECT_EQ(other_back.simulator.max_mode_iterations, 5);
   // The loaded segments re-simulate to the same samples.
   std::vector<PlanSegment> segs = back.segments;
   const auto again = simulateSegments(planner.simulator(), back.q0, segs, 10);
@@ -186,6 +206,18 @@ TEST_F(PlannerTest, MalformedPlanFileIsRefused) {
     FAIL() << "accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("seed is missing"), std::string::npos) << e.what();
+  }
+  // A simulator setting out of range is named.
+  ReorientationPlanner planner(model, testSettings(7));
+  Plan plan;
+  ASSERT_TRUE(planner.solve(smallProblem(), plan));
+  plan.simulator.slip_tolerance = -1.0;
+  writePlanJson(plan, path);
+  try {
+    readPlanJson(path);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("tolerances"), std::string::npos) << e.what();
   }
 }
 

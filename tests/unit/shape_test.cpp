@@ -112,6 +112,24 @@ TEST(Shape, DerivativesMatchFiniteDifferences) {
   }
 }
 
+TEST(Shape, ShiftedShapeIsTheSameBoundaryMoved) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.01, 0.01), xi(0.0, kTwoPi);
+  for (Kind kind : kKinds) {
+    const auto shape = randomShape(kind, rng);
+    const Vec2 d(u(rng), u(rng));
+    const auto moved = shape->shifted(d);
+    EXPECT_EQ(moved->type(), shape->type());
+    for (int k = 0; k < 20; ++k) {
+      const double x = xi(rng);
+      EXPECT_LT((moved->point(x) - shape->point(x) - d).norm(), 1e-14);
+      EXPECT_LT((moved->boundary(x).normal - shape->boundary(x).normal).norm(), 1e-14);
+      const Vec2 p(u(rng) * 30, u(rng) * 30);
+      EXPECT_NEAR(moved->closest(p + d).signed_distance, shape->closest(p).signed_distance, 1e-10);
+    }
+  }
+}
+
 TEST(Shape, BoundaryFrameIsUnitOrthogonalAndInward) {
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> xi_dist(0.0, kTwoPi);

@@ -22,9 +22,7 @@ using ModeKey = std::array<int, kMaxFingers>;
 
 // Each segment's majority contact modes, by a re-simulation of the plan written here.
 std::vector<ModeKey> segmentModes(const RbsfModel& model, const planner::Plan& plan) {
-  SimulatorSettings ss;
-  ss.time_step = plan.time_step;
-  const Simulator sim(model, ss);
+  const Simulator sim(model, plan.simulator);
   SimulatorWorkspace ws(model.numFingers());
   StepReport report;
   SimState state(plan.q0, VecQ::Zero(plan.q0.size()));

@@ -69,7 +69,7 @@ void checkPlan(const RbsfModel& model, const planner::Plan& plan) {
   };
   if (plan.q0.size() != n)
     bad("q0 has " + std::to_string(plan.q0.size()) + " entries, expected " + std::to_string(n));
-  if (!(plan.time_step > 0.0)) bad("time_step must be positive");
+  if (!(plan.simulator.time_step > 0.0)) bad("time_step must be positive");
   for (std::size_t s = 0; s < plan.segments.size(); ++s)
     if (plan.segments[s].tau.size() != nu || !(plan.segments[s].duration > 0.0))
       bad("segments[" + std::to_string(s) + "] has a tau of the wrong size or no duration");

@@ -38,9 +38,7 @@ bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int interv
       why = "a segment of the plan holds no simulator step";
       return false;
     }
-  SimulatorSettings ss;
-  ss.time_step = plan.time_step;
-  const Simulator sim(model, ss);
+  const Simulator sim(model, plan.simulator);
   SimulatorWorkspace ws(m);
   SimState state(plan.q0, VecQ::Zero(plan.q0.size()));
   ModelData data(m);

@@ -97,7 +97,7 @@ planner::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z, const planner::
     planner::PlanSegment seg;
     seg.phase = schedule_.runs[j].phase;
     seg.duration = z[layout_->duration(j)] / schedule_.runs[j].intervals;
-    seg.steps = static_cast<int>(std::lround(seg.duration / input.time_step));
+    seg.steps = static_cast<int>(std::lround(seg.duration / input.simulator.time_step));
     seg.tau = z.segment(layout_->tau(k), nu);
     seg.tau_end = z.segment(layout_->tau(k + 1), nu);
     out.segments.push_back(seg);

@@ -48,6 +48,10 @@ class Shape {
   /// \brief Radius of a circle about the COM that contains the whole shape [m].
   virtual double boundingRadius() const = 0;
 
+  /// \brief The same boundary moved by d in the object frame: the part's geometry seen
+  ///        from a COM that sits -d from where this shape has it [m].
+  virtual std::shared_ptr<const Shape> shifted(const Vec2& d) const = 0;
+
   /// \brief A positive lower bound of the radius of curvature over the whole boundary [m]:
   ///        a point inside the shape no deeper than this has a unique closest point.
   virtual double minCurvatureRadius() const = 0;
@@ -90,6 +94,7 @@ class EllipseShape final : public Shape {
   EllipseShape(double a, double b, const Vec2& center = Vec2::Zero());
   std::string type() const override { return "ellipse"; }
   void derivatives(double xi, Vec2& c, Vec2& dc, Vec2& ddc) const override;
+  std::shared_ptr<const Shape> shifted(const Vec2& d) const override;
   double boundingRadius() const override;
   double minCurvatureRadius() const override {
     return std::min(a_, b_) * std::min(a_, b_) / std::max(a_, b_);
@@ -110,6 +115,7 @@ class CircleShape final : public Shape {
   explicit CircleShape(double radius, const Vec2& center = Vec2::Zero());
   std::string type() const override { return "circle"; }
   void derivatives(double xi, Vec2& c, Vec2& dc, Vec2& ddc) const override;
+  std::shared_ptr<const Shape> shifted(const Vec2& d) const override;
   double boundingRadius() const override;
   double minCurvatureRadius() const override { return r_; }
   ClosestPoint closest(const Vec2& p) const override;
@@ -133,6 +139,7 @@ class SuperellipseShape final : public Shape {
   SuperellipseShape(double a, double b, double exponent, const Vec2& center = Vec2::Zero());
   std::string type() const override { return "superellipse"; }
   void derivatives(double xi, Vec2& c, Vec2& dc, Vec2& ddc) const override;
+  std::shared_ptr<const Shape> shifted(const Vec2& d) const override;
   double boundingRadius() const override;
   /// Half the smallest radius of curvature over the construction-time scan (within 2%).
   double minCurvatureRadius() const override;

@@ -152,6 +152,9 @@ class Simulator {
   /// \throws InputError for a non-positive time step or negative tolerances.
   explicit Simulator(const RbsfModel& model, const SimulatorSettings& settings = {});
 
+  /// \brief The checks of the constructor. \throws InputError naming the setting.
+  static void checkSettings(const SimulatorSettings& settings);
+
   const RbsfModel& model() const { return model_; }
   const SimulatorSettings& settings() const { return settings_; }
 

@@ -11,6 +11,10 @@
 /// | `propagations`  | propagate() calls (each k simulator steps) |
 /// | `goal_distance` | final distance in tolerance units (<= 1 when exact) |
 /// | `time_step`     | simulator step h [s]; `steps_per_control` k |
+/// | `simulator`     | the simulator's other settings (simulator.h): |
+/// |                 | `activation_distance`, `contact_tolerance`, `slip_tolerance`, |
+/// |                 | `regularization`, `curvature_terms`, `drift_correction`, |
+/// |                 | `max_mode_iterations`; defaults when absent |
 /// | `start`, `goal` | poses {x, y, phi}; `start_theta` the base angle at the start |
 /// | `q0`            | start configuration (state_layout.h order), at rest |
 /// | `phase_sequence` | the segments' phases, runs merged (Plan::phaseSequence) |
@@ -109,7 +113,9 @@ struct Plan {
   double planning_time = 0.0;
   std::uint64_t propagations = 0;
   double goal_distance = 0.0;
-  double time_step = 1e-3;
+  /// \brief The simulator the plan was made with (time step h and tolerances): every stage
+  ///        that simulates the plan (optimiser, certificate, replay) uses the same physics.
+  SimulatorSettings simulator;
   int steps_per_control = 1;
   Pose start, goal;
   double start_theta = 0.0;

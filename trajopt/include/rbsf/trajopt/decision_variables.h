@@ -24,16 +24,15 @@ struct OptimizerSettings;
 /// [duration_min_scale, duration_max_scale] x the planned duration of run j.
 ///
 /// Initial guess: the planner's trajectory at the knot times (knots spread uniformly over
-/// each run's planned duration), the plan re-simulated step by step (plan.time_step): q, v
-/// interpolated linearly between simulator steps; f_n and f_t of knot k the simulator's
-/// mean contact forces over the knot's share of time, from the midpoint of the interval
-/// before it to that of the interval after it (impulse / duration, impacts included: the
-/// collocation integrates knot forces over those halves); tau the held tau of the segment
-/// the knot starts; xi the closest boundary points of the tips (unwrapped along the plan);
-/// then clipped into the bounds (a force where the schedule has the contact off becomes 0).
-/// Against forces sampled at the knots with f_t = 0 (before 2026-11-21), the median of the
-/// object's velocity defects at the guess was 4-40 times smaller on the default problems
-/// (measured under the trapezoidal rule, BENCHMARKS.md).
+/// each run's planned duration), the plan re-simulated step by step (plan.simulator.time_step): q,
+/// v interpolated linearly between simulator steps; f_n and f_t of knot k the simulator's mean
+/// contact forces over the knot's share of time, from the midpoint of the interval before it to
+/// that of the interval after it (impulse / duration, impacts included: the collocation integrates
+/// knot forces over those halves); tau the held tau of the segment the knot starts; xi the closest
+/// boundary points of the tips (unwrapped along the plan); then clipped into the bounds (a force
+/// where the schedule has the contact off becomes 0). Against forces sampled at the knots with f_t
+/// = 0 (before 2026-11-21), the median of the object's velocity defects at the guess was 4-40 times
+/// smaller on the default problems (measured under the trapezoidal rule, BENCHMARKS.md).
 class DecisionVariables {
  public:
   DecisionVariables(const RbsfModel& model, const DecisionLayout& layout, const Schedule& schedule,

@@ -58,8 +58,8 @@ struct Schedule {
   ContactRole forceRole(int knot, int i) const { return role(std::min(knot, intervals() - 1), i); }
 };
 
-/// \brief Re-simulate the plan's segments (time step plan.time_step, default simulator
-///        settings otherwise) and group them into runs: consecutive segments of one phase
+/// \brief Re-simulate the plan's segments (with the plan's simulator settings) and group them into
+/// runs: consecutive segments of one phase
 ///        letter and, with `split_by_contact_modes`, the same majority mode of every
 ///        contact over the segment (a P run in which a third finger lands becomes two P
 ///        runs); when that gives more than intervals / 2 runs, by letter alone. Count each
