@@ -1,7 +1,9 @@
 #include "rbsf/dynamics/control_law.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/state_layout.h"
@@ -42,6 +44,7 @@ void ControlLaw::reset() {
   dropped_ = 0;
   demand_.setZero();
   applied_.setZero();
+  xi_.setZero();
 }
 
 void ControlLaw::addPartPose(double stamp, const Pose& pose) {
@@ -94,12 +97,43 @@ void ControlLaw::applyPartSample(const PartSample& s) {
   state_.anchored.fill(false);
 }
 
+void ControlLaw::settleOnFingers(VecQ& q) {
+  // Gauss-Newton on the gaps of the contacts the plan starts on: the least part motion that
+  // closes them (G1's part rows), twice.
+  const RbsfModel& model = schedule_.model();
+  const int m = model.numFingers();
+  const ContactModes& modes = schedule_.modes(0);
+  ModelData& data = ws_->data;
+  for (int iteration = 0; iteration < 2; ++iteration) {
+    data.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
+    model.updateContacts(q, data);
+    Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxFingers> G(3, 0);
+    VecC gap(0);
+    for (int i = 0; i < m; ++i) {
+      if (modes[i] == ContactMode::kSeparated) continue;
+      G.conservativeResize(3, G.cols() + 1);
+      gap.conservativeResize(gap.size() + 1);
+      G.col(G.cols() - 1) = data.G1.col(i).head<3>();
+      gap[gap.size() - 1] = data.contacts[i].gap;
+    }
+    if (G.cols() == 0) return;
+    const MatCC D = G.transpose() * G;
+    const VecC w = D.ldlt().solve(gap);
+    q.head<3>() -= G * w;
+  }
+}
+
 bool ControlLaw::compute(double t, const VecU& joints, VecU& tau) {
   const double h = schedule_.timeStep();
   const int n = schedule_.model().configDim();
   if (step_ < 0) {
+    // Start at rest: the part where the plan starts it, the joints where they are measured
+    // (an estimate started elsewhere would read the first joint residual as a velocity).
     schedule_.reference(t, at_);
-    state_ = SimState(at_.q, VecQ::Zero(n));
+    VecQ q = at_.q;
+    for (int j = 0; j < joints.size(); ++j) q[layout::inputToConfig(j)] = joints[j];
+    settleOnFingers(q);
+    state_ = SimState(q, VecQ::Zero(n));
     state_.t = t;
     step_ = 0;
   } else {
@@ -124,8 +158,16 @@ bool ControlLaw::compute(double t, const VecU& joints, VecU& tau) {
   schedule_.reference(t, at_);
   e_.head(n) = state_.q - at_.q;
   e_.tail(n) = state_.v - at_.v;
-  const bool clamped = control(t, cur.knot, e_, tau);
+  const bool clamped = control(t, cur.knot, e_, xi_, tau);
   applied_ = tau;
+  if (!clamped) {
+    const FeedbackSettings& fs = schedule_.settings();
+    for (int c = 0; c < layout::kObjectDim; ++c) {
+      const double bound =
+          fs.integral_limit * fs.integral_time * (c == layout::kPhi ? fs.angle : fs.position);
+      xi_[c] = std::clamp(xi_[c] + h * e_[c], -bound, bound);
+    }
+  }
   return clamped;
 }
 
@@ -135,14 +177,15 @@ bool ControlLaw::computeFromState(double t, const VecQ& q, const VecQ& v, VecU& 
   VecX e(2 * n);
   e.head(n) = q - at_.q;
   e.tail(n) = v - at_.v;
-  return control(t, schedule_.knotAt(t), e, tau);
+  return control(t, schedule_.knotAt(t), e, Eigen::Vector3d::Zero(), tau);
 }
 
-bool ControlLaw::control(double t, int knot, const VecX& e, VecU& tau) {
+bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3d& xi, VecU& tau) {
   const int nu = schedule_.model().controlDim();
   schedule_.reference(t + 0.5 * schedule_.timeStep(), mid_);
   demand_ = mid_.tau;
   demand_.noalias() -= schedule_.gain(knot) * e;
+  demand_.noalias() -= schedule_.integralGain(knot) * xi;
   const Cell& c = schedule_.model().cell();
   tau.resize(nu);
   bool clamped = false;

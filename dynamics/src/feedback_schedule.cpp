@@ -53,8 +53,11 @@ FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory t
         s.part_angular_acceleration, s.joint_acceleration, s.drift_speed, s.touch_gap})
     if (!(std::isfinite(x) && x > 0.0))
       throw InputError("feedback settings: every weight, period and noise must be positive");
-  if (!(s.settle_time >= 0.0 && s.horizon_tail >= 0.0 && s.damping_ratio >= 0.0))
-    throw InputError("feedback settings: settle_time, horizon_tail, damping_ratio >= 0");
+  if (!(s.settle_time >= 0.0 && s.horizon_tail >= 0.0 && s.damping_ratio >= 0.0 &&
+        s.integral_time >= 0.0 && s.integral_limit >= 0.0))
+    throw InputError(
+        "feedback settings: settle_time, horizon_tail, damping_ratio, integral_time and "
+        "integral_limit must be >= 0");
   steps_per_knot_ = std::max(1, static_cast<int>(std::lround(s.gain_period / h_)));
   t0_ = reference_.startTime();
 
@@ -159,8 +162,17 @@ void FeedbackSchedule::computeLqr(const std::vector<MatrixXd>& tangent) {
   for (int i = 0; i < m; ++i) rdiag[layout::fingerForce(i)] = model_.cell().fingers[i].force_limit;
   const MatrixXd R = (s.input_fraction * rdiag).cwiseInverse().cwiseAbs2().asDiagonal();
 
-  const int knots = numKnots();
+  const int knots = numKnots(), n = model_.configDim();
+  // Integral of the part's pose error (x, y, phi): three states appended to z.
+  const bool integral = s.integral_time > 0.0;
+  const int ni = integral ? layout::kObjectDim : 0;
+  VectorXd qi(ni);
+  for (int c = 0; c < ni; ++c)
+    qi[c] = 1.0 / std::pow((c == layout::kPhi ? s.angle : s.position) * s.integral_time, 2);
+  MatrixXd Hp = MatrixXd::Zero(ni, 2 * n);
+  for (int c = 0; c < ni; ++c) Hp(c, c) = 1.0;
   K_.assign(knots, MatrixXd());
+  Ki_.assign(knots, MatrixXd::Zero(nu, layout::kObjectDim));
   MatrixXd S;
   auto riccati = [&](const MatrixXd& Az, const MatrixXd& Bz, const MatrixXd& Qz, MatrixXd& K) {
     const MatrixXd SB = S * Bz;
@@ -170,20 +182,28 @@ void FeedbackSchedule::computeLqr(const std::vector<MatrixXd>& tangent) {
   };
   for (int k = knots - 1; k >= 0; --k) {
     const MatrixXd& P = tangent[k];
-    const MatrixXd Az = P.transpose() * Ad_[k] * P;
-    const MatrixXd Bz = P.transpose() * Bd_[k];
-    const MatrixXd Qz = P.transpose() * Q * P;
+    const int r = static_cast<int>(P.cols());
+    MatrixXd Az = MatrixXd::Identity(r + ni, r + ni), Bz = MatrixXd::Zero(r + ni, nu);
+    MatrixXd Qz = MatrixXd::Zero(r + ni, r + ni);
+    Az.topLeftCorner(r, r) = P.transpose() * Ad_[k] * P;
+    Az.bottomLeftCorner(ni, r) = h_ * Hp * P;
+    Bz.topRows(r) = P.transpose() * Bd_[k];
+    Qz.topLeftCorner(r, r) = P.transpose() * Q * P;
+    Qz.bottomRightCorner(ni, ni) = qi.asDiagonal();
     MatrixXd K;
     if (k == knots - 1) {
       S = Qz;
       for (long j = std::lround(s.horizon_tail / h_); j > 0; --j) riccati(Az, Bz, Qz, K);
     } else {
       // The manifold changes with the mode: carry the cost-to-go into this knot's basis.
-      const MatrixXd T = tangent[k + 1].transpose() * P;
+      const int r1 = static_cast<int>(tangent[k + 1].cols());
+      MatrixXd T = MatrixXd::Identity(r1 + ni, r + ni);
+      T.topLeftCorner(r1, r) = tangent[k + 1].transpose() * P;
       S = T.transpose() * S * T;
     }
     for (int j = 0; j < steps_per_knot_; ++j) riccati(Az, Bz, Qz, K);
-    K_[k] = K * P.transpose();
+    K_[k] = K.leftCols(r) * P.transpose();
+    if (integral) Ki_[k] = K.rightCols(ni);
   }
 }
 
@@ -210,6 +230,7 @@ void FeedbackSchedule::computePd() {
     K(j, n + k) = inertia[j] * 2.0 * z * w;
   }
   K_.assign(numKnots(), K);
+  Ki_.assign(numKnots(), MatrixXd::Zero(nu, layout::kObjectDim));
 }
 
 void FeedbackSchedule::computeKalman() {

@@ -7,11 +7,13 @@
 /// velocities) and any part poses measured since (timestamped, late by the sensor's
 /// latency), estimates the state and returns
 ///
-///   tau = sat( tau_ff(t + h/2) - K(t) (x_hat(t) - x_ref(t)) ),
+///   tau = sat( tau_ff(t + h/2) - K(t) (x_hat(t) - x_ref(t)) - K_i(t) xi ),
 ///
 /// tau_ff and x_ref from the plan's reference (feedback_schedule.h: held at rest after the
 /// plan's end), K the schedule's gain: a time-varying LQR on the planned mode's manifold
-/// when the cell senses the part, the joint PD of a cell that does not. sat clamps each
+/// when the cell senses the part, the joint PD of a cell that does not; xi the integral of
+/// the estimated part pose error (x, y, phi), accumulated only while no input is clamped
+/// and held within the schedule's integral_limit (anti-windup). sat clamps each
 /// input to the cell's limit (tau_theta to +-torque_limit [N m], tau_i to +-force_limit [N]).
 ///
 /// State estimate: an extended Kalman filter whose process model is the nominal simulator
@@ -51,7 +53,9 @@ class ControlLaw {
   /// \param history_time how far back a part sample may be applied [s] (>= the latency).
   explicit ControlLaw(const FeedbackSchedule& schedule, double history_time = 0.05);
 
-  /// \brief Start a new execution: the estimate is the reference at its start, at rest.
+  /// \brief Start a new execution: at the first compute() the estimate is the part at the
+  ///        reference's start moved the least that puts it on the fingers as measured
+  ///        (the contacts the plan starts on), at rest.
   void reset();
 
   /// \brief A part pose measured at plan time `stamp` [s]; applied at the next compute().
@@ -96,7 +100,9 @@ class ControlLaw {
   Entry& entry(long j) { return ring_[static_cast<std::size_t>(j % ring_.size())]; }
   void jointUpdate(int knot, const VecU& joints);
   void applyPartSample(const PartSample& s);
-  bool control(double t, int knot, const VecX& e, VecU& tau);
+  /// \brief Move the part of q the least that puts it on the fingers it starts on.
+  void settleOnFingers(VecQ& q);
+  bool control(double t, int knot, const VecX& e, const Eigen::Vector3d& xi, VecU& tau);
 
   const FeedbackSchedule& schedule_;
   std::unique_ptr<SimulatorWorkspace> ws_;
@@ -108,6 +114,7 @@ class ControlLaw {
   long step_ = -1;  ///< index of the last computed step
   VecU demand_;
   VecX e_, d_;
+  Eigen::Vector3d xi_ = Eigen::Vector3d::Zero();  ///< integral of the part pose error
   ReferenceSample at_, mid_;
   std::uint64_t dropped_ = 0;
 };

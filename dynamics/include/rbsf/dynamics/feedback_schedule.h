@@ -20,7 +20,10 @@
 /// R = diag(1 / (input_fraction x limit)^2); a backward Riccati recursion over every control
 /// step (horizon_tail more at the last knot), the cost-to-go carried across knots by
 /// P_k^T P_k+1 (the manifold changes with the mode). The gain of knot k in full
-/// coordinates is K_k P_k^T: du = -K_k P_k^T e.
+/// coordinates is K_k P_k^T: du = -K_k P_k^T e. With integral_time > 0 three states xi,
+/// the integral of the part's pose error (xi' = H_p e), are appended to z and weighted by
+/// 1 / ((tolerance x integral_time)^2): their gain Ki removes the steady offsets that a
+/// drawn COM, mass or actuator gain leave.
 ///
 /// Joint PD (part_pose: none). du = -K e with K non-zero only on the joints:
 /// Kp_j = I_j omega_n^2, Kd_j = 2 zeta omega_n I_j, I_j the joint's effective inertia at
@@ -54,7 +57,7 @@ namespace rbsf {
 /// \brief Settings of the gains; defaults documented in the file comment.
 struct FeedbackSettings {
   double gain_period = 0.01;  ///< knot spacing D [s]
-  double settle_time = 0.5;   ///< hold at rest after the plan's end [s]
+  double settle_time = 1.0;   ///< hold at rest after the plan's end [s]
   double horizon_tail = 1.0;  ///< Riccati horizon beyond the last knot [s]
   double touch_gap = 5e-4;    ///< a reference contact within this gap touches [m]
   /// \brief A contact is a constraint of the planned mode only when the reference presses
@@ -70,18 +73,24 @@ struct FeedbackSettings {
   double base_rate = 0.2;             ///< theta' [rad/s]
   double stroke_speed = 0.05;         ///< l_i' [m/s]
   double input_fraction = 0.02;       ///< tolerated input, fraction of its limit
+  /// \brief Integral action on the part's pose: the integral of its error is weighted as
+  ///        an error of (position, angle) x integral_time [m s, rad s]; 0 turns it off.
+  double integral_time = 0.5;
+  /// \brief The law's integral is held within +- integral_limit x (position, angle) x
+  ///        integral_time (anti-windup, with no integration while an input is clamped).
+  double integral_limit = 3.0;
   // Joint PD (part_pose: none).
   double natural_frequency = 30.0;  ///< omega_n [rad/s]
   double damping_ratio = 1.0;       ///< zeta
   // Kalman filter: process noise intensities [unit / s^2 / sqrt(Hz)] and drift [unit / s /
   // sqrt(Hz)].
   double part_acceleration = 0.2;          ///< part x, y [m/s^2]
-  double part_angular_acceleration = 0.5;  ///< part phi [rad/s^2]
-  double joint_acceleration = 0.5;         ///< theta [rad/s^2], l_i [m/s^2]
+  double part_angular_acceleration = 1.0;  ///< part phi [rad/s^2]
+  double joint_acceleration = 2.0;         ///< theta [rad/s^2], l_i [m/s^2]
   double drift_speed = 1e-4;               ///< every position [m/s or rad/s]
   /// \brief Part accelerations outside the planned mode (contacts slipping or sticking
   ///        unlike the plan), on x, y [m/s^2] and phi [rad/s^2] alike.
-  double slip_acceleration = 0.1;
+  double slip_acceleration = 0.01;
 };
 
 /// \brief Gains and step maps at the knots; immutable once built, one per plan and
@@ -120,6 +129,9 @@ class FeedbackSchedule {
   const Eigen::MatrixXd& Bd(int k) const { return Bd_[k]; }
   /// \brief Feedback gain at knot k, (m + 1) x 2n: du = -gain (x - x_ref).
   const Eigen::MatrixXd& gain(int k) const { return K_[k]; }
+  /// \brief Integral gain at knot k, (m + 1) x 3: du = -gain e - integralGain xi, xi the
+  ///        integral of the part's pose error (x, y, phi) [m s, rad s]. Zero for joint PD.
+  const Eigen::MatrixXd& integralGain(int k) const { return Ki_[k]; }
   /// \brief Kalman gains at knot k: joints 2n x (m + 1), part 2n x 3 (empty if not sensed).
   const Eigen::MatrixXd& jointGain(int k) const { return Lj_[k]; }
   const Eigen::MatrixXd& partGain(int k) const { return Lp_[k]; }
@@ -142,7 +154,7 @@ class FeedbackSchedule {
   double t0_ = 0.0;
   VecQ hold_q_;
   VecU hold_tau_;
-  std::vector<Eigen::MatrixXd> Ad_, Bd_, F_, K_, Lj_, Lp_;
+  std::vector<Eigen::MatrixXd> Ad_, Bd_, F_, K_, Ki_, Lj_, Lp_;
   std::vector<ContactModes> modes_;
 };
 

@@ -55,6 +55,7 @@
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/dynamics/trajectory_sample.h"
+#include "rbsf/planner/certificate_report.h"
 
 namespace rbsf::planner {
 

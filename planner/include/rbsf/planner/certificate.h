@@ -1,0 +1,59 @@
+#pragma once
+/// \file
+/// \brief The certificate of a plan: evidence that it runs on a cell. N closed-loop trials
+///        (trial.h), each with a plant drawn from the cell's uncertainty, the cell's sensors
+///        and the control law (control_law.h), judged by outcome; certified when the share
+///        of successes is at least required_rate.
+///
+/// The law is the one the cell's sensing allows: part feedback (TV-LQR with the part's
+/// pose) when the cell senses the part, joint feedback (joint PD) when it does not, or
+/// the plan's inputs alone (open_loop, for comparison). Its gains are made once from the
+/// cell as given (the controller knows the nominal cell, not the draw).
+///
+/// Reproducible: trial i draws from (seed, i) alone, so the certificate is the same bits
+/// for a seed whatever the number of threads; trials run on every core (threads = 0).
+/// The worst trial: a failed one before any success; among those alike, the largest
+/// max(position error / tolerance, angle error / tolerance) at the end, then the lowest
+/// index.
+
+#include <atomic>
+#include <cstdint>
+#include <vector>
+
+#include "rbsf/dynamics/feedback_schedule.h"
+#include "rbsf/dynamics/model.h"
+#include "rbsf/planner/certificate_report.h"
+#include "rbsf/planner/plan.h"
+#include "rbsf/planner/trial.h"
+
+namespace rbsf::planner {
+
+/// \brief How a certificate is made; defaults documented.
+struct CertificateSettings {
+  int trials = 32;              ///< N (>= 1)
+  std::uint64_t seed = 1;       ///< of the draws
+  double required_rate = 0.95;  ///< certified when successes / N >= this
+  int threads = 0;              ///< 0: one per core
+  bool open_loop = false;       ///< the plan's inputs alone instead of the law
+  TrialSettings trial;          ///< criteria
+  FeedbackSettings feedback;    ///< the law's gains (settle_time: the hold after the plan)
+};
+
+/// \brief Run the trials and judge them.
+/// \param model the cell the law is made for and the trials draw around (its sensing and
+///        uncertainty too).
+/// \param outcomes when given, receives every trial's outcome in index order.
+/// \param cancel when set and it becomes true, the remaining trials are skipped and the
+///        certificate is not certified (ran stays false).
+/// \throws InputError for settings out of range or a plan that does not fit the cell.
+Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateSettings& settings,
+                    std::vector<TrialOutcome>* outcomes = nullptr,
+                    const std::atomic<bool>* cancel = nullptr);
+
+/// \brief Trial `index` of a certificate again, with every step's true state in `trace`
+///        (index -1: the nominal trial, no draws and no sensor noise).
+TrialOutcome traceTrial(const RbsfModel& model, const Plan& plan,
+                        const CertificateSettings& settings, int index,
+                        std::vector<TrajectorySample>& trace);
+
+}  // namespace rbsf::planner

@@ -1,0 +1,60 @@
+#pragma once
+/// \file
+/// \brief What a certificate says (certificate.h): how each closed-loop trial of a plan
+///        ended and the verdict over all of them. Plain data, written into plan files
+///        (plan.h key `certificate`) and by rbsf-replay.
+
+#include <cstdint>
+#include <string>
+
+#include "rbsf/dynamics/sensing.h"
+
+namespace rbsf::planner {
+
+/// \brief How one trial ended. Poses are the part's frame as the plan knows it (a drawn
+///        COM offset does not move the goal).
+struct TrialOutcome {
+  int index = -1;               ///< trial number, from 0
+  bool success = false;         ///< every criterion of certificate.h met
+  std::string failure;          ///< the failed criteria with their values; empty on success
+  double position_error = 0.0;  ///< final distance to the goal position [m]
+  double angle_error = 0.0;     ///< final |phi - phi_goal| [rad]
+  double speed = 0.0;           ///< mean part speed over the last rest window [m/s]
+  double angular_speed = 0.0;   ///< mean |phi'| over the last rest window [rad/s]
+  bool dropped = false;         ///< the part left the fingers, was lost or the state diverged
+  double dropped_time = -1.0;   ///< when [s]; -1 if never
+  double saturated_time = 0.0;  ///< time the law demanded more than an input's limit [s]
+  double min_f_n = 0.0;         ///< least normal force of a touching contact [N]
+  /// \brief Largest distance from the plan's path in tolerance units: max over the trial of
+  ///        max(position distance / position tolerance, angle distance / angle tolerance).
+  double max_deviation = 0.0;
+  std::string phases;            ///< phase sequence seen (runs under min_phase_run dropped)
+  double departure_time = -1.0;  ///< first time farther from the path than a tolerance [s]
+  std::string departure_phase;   ///< the plan's phase letter there ("hold" after its end)
+};
+
+/// \brief The verdict over a set of trials (certificate.h).
+struct Certificate {
+  bool ran = false;
+  std::string law;  ///< "part feedback", "joint feedback" or "open loop"
+  int trials = 0;
+  int successes = 0;
+  double success_rate = 0.0;    ///< successes / trials
+  double required_rate = 0.95;  ///< certified when success_rate >= this
+  bool certified = false;
+  std::uint64_t seed = 0;           ///< the draws' seed: the same seed gives the same certificate
+  double settle_time = 0.0;         ///< held at rest after the plan's end [s]
+  double position_tolerance = 0.0;  ///< [m]
+  double angle_tolerance = 0.0;     ///< [rad]
+  double rest_speed = 0.0;          ///< [m/s]
+  double rest_angular_speed = 0.0;  ///< [rad/s]
+  Sensing sensing;                  ///< what the trials' cell measured
+  Uncertainty uncertainty;          ///< what they drew from
+  TrialOutcome worst;               ///< the worst trial (certificate.h), index -1 when none
+};
+
+/// \brief The one-line verdict: "certified: 31/32 trials (97 %)" or "NOT certified: ...,
+///        worst trial 7: <its failure>".
+std::string verdictText(const Certificate& certificate);
+
+}  // namespace rbsf::planner

@@ -1,0 +1,131 @@
+#include "rbsf/planner/certificate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <thread>
+
+#include "rbsf/dynamics/errors.h"
+#include "rbsf/planner/plan_reference.h"
+
+namespace rbsf::planner {
+
+namespace {
+
+void checkSettings(const RbsfModel& model, const Plan& plan, const CertificateSettings& s) {
+  if (s.trials < 1 || s.trials > 100000)
+    throw InputError("certificate: trials must be in 1..100000 (got " + std::to_string(s.trials) +
+                     ")");
+  if (!(s.required_rate >= 0.0 && s.required_rate <= 1.0))
+    throw InputError("certificate: required_rate must be in [0, 1]");
+  if (s.threads < 0) throw InputError("certificate: threads must be >= 0");
+  const TrialSettings& t = s.trial;
+  for (double x : {t.position_tolerance, t.angle_tolerance, t.rest_window, t.rest_speed,
+                   t.rest_angular_speed, t.drop_time, t.lost_distance, t.min_phase_run})
+    if (!(std::isfinite(x) && x > 0.0))
+      throw InputError("certificate: tolerances, windows and limits must be positive");
+  if (!(t.saturation_time >= 0.0)) throw InputError("certificate: saturation_time must be >= 0");
+  if (plan.q0.size() != model.configDim())
+    throw InputError("the plan is for " + std::to_string(plan.q0.size() - 4) +
+                     " fingers, the cell has " + std::to_string(model.numFingers()));
+}
+
+/// Badness of an outcome for the worst-trial choice: failures first, then the final error.
+std::pair<int, double> badness(const TrialOutcome& o, const TrialSettings& s) {
+  const double err =
+      std::max(o.position_error / s.position_tolerance, o.angle_error / s.angle_tolerance);
+  return {o.success ? 0 : 1, o.dropped ? std::numeric_limits<double>::infinity() : err};
+}
+
+FeedbackSchedule makeSchedule(const RbsfModel& model, const Plan& plan,
+                              const CertificateSettings& s) {
+  return FeedbackSchedule(model, makeReference(plan), model.cell().sensing, plan.simulator,
+                          s.feedback);
+}
+
+}  // namespace
+
+std::string verdictText(const Certificate& c) {
+  if (!c.ran) return "not certified: no trials ran";
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "%s: %d/%d trials succeeded (%.0f %%, %.0f %% required)",
+                c.certified ? "certified" : "NOT certified", c.successes, c.trials,
+                100.0 * c.success_rate, 100.0 * c.required_rate);
+  std::string text = buf;
+  if (c.worst.index >= 0 && !c.worst.success)
+    text += "; worst trial " + std::to_string(c.worst.index) + ": " + c.worst.failure;
+  return text;
+}
+
+Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateSettings& s,
+                    std::vector<TrialOutcome>* all, const std::atomic<bool>* cancel) {
+  checkSettings(model, plan, s);
+  const FeedbackSchedule schedule = makeSchedule(model, plan, s);
+  std::vector<TrialOutcome> outcomes(static_cast<std::size_t>(s.trials));
+  std::atomic<int> next{0};
+  std::mutex error_mutex;
+  std::exception_ptr error;
+  auto worker = [&] {
+    for (;;) {
+      const int i = next++;
+      if (i >= s.trials || (cancel && cancel->load())) return;
+      try {
+        const TrialDraw draw = drawTrial(model.cell(), plan, s.seed, i);
+        outcomes[static_cast<std::size_t>(i)] =
+            runTrial(schedule, plan, draw, s.trial, s.open_loop);
+        outcomes[static_cast<std::size_t>(i)].index = i;
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        next = s.trials;
+      }
+    }
+  };
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = std::min(s.trials, s.threads > 0 ? s.threads : cores);
+  std::vector<std::thread> pool;
+  for (int k = 1; k < threads; ++k) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+
+  Certificate c;
+  c.law = s.open_loop ? "open loop" : schedule.partFeedback() ? "part feedback" : "joint feedback";
+  c.trials = s.trials;
+  c.required_rate = s.required_rate;
+  c.seed = s.seed;
+  c.settle_time = s.feedback.settle_time;
+  c.position_tolerance = s.trial.position_tolerance;
+  c.angle_tolerance = s.trial.angle_tolerance;
+  c.rest_speed = s.trial.rest_speed;
+  c.rest_angular_speed = s.trial.rest_angular_speed;
+  c.sensing = model.cell().sensing;
+  c.uncertainty = model.cell().uncertainty;
+  if (cancel && cancel->load()) return c;
+  c.ran = true;
+  for (const TrialOutcome& o : outcomes) {
+    c.successes += o.success ? 1 : 0;
+    if (c.worst.index < 0 || badness(o, s.trial) > badness(c.worst, s.trial)) c.worst = o;
+  }
+  c.success_rate = static_cast<double>(c.successes) / c.trials;
+  c.certified = c.success_rate >= s.required_rate;
+  if (all) *all = std::move(outcomes);
+  return c;
+}
+
+TrialOutcome traceTrial(const RbsfModel& model, const Plan& plan, const CertificateSettings& s,
+                        int index, std::vector<TrajectorySample>& trace) {
+  checkSettings(model, plan, s);
+  const FeedbackSchedule schedule = makeSchedule(model, plan, s);
+  const TrialDraw draw =
+      index < 0 ? nominalDraw(model.cell(), plan) : drawTrial(model.cell(), plan, s.seed, index);
+  trace.clear();
+  TrialOutcome o = runTrial(schedule, plan, draw, s.trial, s.open_loop, &trace);
+  o.index = index;
+  return o;
+}
+
+}  // namespace rbsf::planner
