@@ -60,6 +60,15 @@ struct Checker {
     if (!(lo < hi))
       fail(path + " must be [lo, hi] with lo < hi (got [" + fmt(lo) + ", " + fmt(hi) + "])");
   }
+  /// v <= max; `max_text` is the bound as the message shows it ("10000 Hz", "pi/4").
+  void atMost(double v, double max, const std::string& max_text, const std::string& path) const {
+    if (v > max) fail(path + " must be at most " + max_text + " (got " + fmt(v) + ")");
+  }
+  /// A relative half-width: 0 <= v < 1, so a draw keeps the quantity positive.
+  void fraction(double v, const std::string& path) const {
+    finite(v, path);
+    if (!(v >= 0 && v < 1)) fail(path + " must lie in [0, 1) (got " + fmt(v) + ")");
+  }
 };
 
 /// Structural reading of YAML nodes; messages "<label>: <path> ...".
@@ -124,12 +133,13 @@ struct Reader : Checker {
     return n.IsDefined() ? number(n, join(path, key)) : fallback;
   }
 
-  /// A list of exactly two numbers.
+  /// A list of exactly two numbers; `fallback` when missing and not required.
   std::pair<double, double> pair(const YAML::Node& map, const std::string& path, const char* key,
-                                 bool required = true) const {
+                                 bool required = true,
+                                 std::pair<double, double> fallback = {0.0, 0.0}) const {
     const std::string p = join(path, key);
     YAML::Node n = get(map, path, key, required);
-    if (!n.IsDefined()) return {0.0, 0.0};
+    if (!n.IsDefined()) return fallback;
     if (!n.IsSequence() || n.size() != 2)
       fail(p + " must be a list of 2 numbers (got " +
            (!n.IsSequence() ? describe(n)
@@ -185,6 +195,50 @@ std::shared_ptr<const Shape> readShape(const Reader& rd, const YAML::Node& n) {
   rd.fail(path + ".type '" + type + "' is unknown (expected ellipse, circle or superellipse)");
 }
 
+/// Section `sensing` (sensing.h); keys left out keep the values already in `s`.
+void readSensing(const Reader& rd, const YAML::Node& n, Sensing& s) {
+  rd.mapping(n, "sensing", {"joints", "part_pose"});
+  const YAML::Node joints = rd.get(n, "sensing", "joints", false);
+  if (joints.IsDefined()) {
+    const std::string p = "sensing.joints";
+    rd.mapping(joints, p, {"noise"});
+    std::tie(s.joints.angle_noise, s.joints.stroke_noise) =
+        rd.pair(joints, p, "noise", false, {s.joints.angle_noise, s.joints.stroke_noise});
+  }
+  const YAML::Node pose = rd.get(n, "sensing", "part_pose", false);
+  if (!pose.IsDefined()) return;
+  const std::string p = "sensing.part_pose";
+  PartPoseSensing& pp = s.part_pose;
+  if (pose.IsScalar() && pose.Scalar() == "none") {
+    pp.present = false;
+    return;
+  }
+  if (!pose.IsMap()) rd.fail(p + " must be a mapping or none (got " + Reader::describe(pose) + ")");
+  rd.mapping(pose, p, {"rate", "latency", "noise"});
+  pp.present = true;
+  pp.rate = rd.number(pose, p, "rate", pp.rate, false);
+  pp.latency = rd.number(pose, p, "latency", pp.latency, false);
+  std::tie(pp.position_noise, pp.angle_noise) =
+      rd.pair(pose, p, "noise", false, {pp.position_noise, pp.angle_noise});
+}
+
+/// Section `uncertainty` (sensing.h); keys left out keep the values already in `u`.
+void readUncertainty(const Reader& rd, const YAML::Node& n, Uncertainty& u) {
+  const std::string p = "uncertainty";
+  rd.mapping(n, p,
+             {"mass", "inertia", "com", "static_friction", "kinetic_friction", "initial_position",
+              "initial_angle", "actuator_gain"});
+  u.mass = rd.number(n, p, "mass", u.mass, false);
+  u.inertia = rd.number(n, p, "inertia", u.inertia, false);
+  u.com = rd.number(n, p, "com", u.com, false);
+  u.static_friction = rd.number(n, p, "static_friction", u.static_friction, false);
+  std::tie(u.kinetic_friction_min, u.kinetic_friction_max) =
+      rd.pair(n, p, "kinetic_friction", false, {u.kinetic_friction_min, u.kinetic_friction_max});
+  u.initial_position = rd.number(n, p, "initial_position", u.initial_position, false);
+  u.initial_angle = rd.number(n, p, "initial_angle", u.initial_angle, false);
+  u.actuator_gain = rd.number(n, p, "actuator_gain", u.actuator_gain, false);
+}
+
 }  // namespace
 
 void Cell::validate() const {
@@ -227,6 +281,35 @@ void Cell::validate() const {
   if (friction.mu_kinetic > friction.mu_static)
     c.fail("friction.kinetic (" + fmt(friction.mu_kinetic) + ") must not exceed friction.static (" +
            fmt(friction.mu_static) + ")");
+
+  // sensing (sensing.h). part_pose is checked even when absent (`none`): its defaults pass.
+  c.nonNegative(sensing.joints.angle_noise, "sensing.joints.noise[0]");
+  c.nonNegative(sensing.joints.stroke_noise, "sensing.joints.noise[1]");
+  const PartPoseSensing& pp = sensing.part_pose;
+  c.positive(pp.rate, "sensing.part_pose.rate");
+  c.atMost(pp.rate, 10000.0, "10000 Hz", "sensing.part_pose.rate");
+  c.nonNegative(pp.latency, "sensing.part_pose.latency");
+  c.atMost(pp.latency, 1.0, "1 s", "sensing.part_pose.latency");
+  c.nonNegative(pp.position_noise, "sensing.part_pose.noise[0]");
+  c.nonNegative(pp.angle_noise, "sensing.part_pose.noise[1]");
+
+  // uncertainty: a draw must keep masses, inertias, friction and gains positive.
+  const Uncertainty& u = uncertainty;
+  c.fraction(u.mass, "uncertainty.mass");
+  c.fraction(u.inertia, "uncertainty.inertia");
+  c.fraction(u.static_friction, "uncertainty.static_friction");
+  c.fraction(u.actuator_gain, "uncertainty.actuator_gain");
+  c.nonNegative(u.com, "uncertainty.com");
+  c.atMost(u.com, 0.1, "0.1 m", "uncertainty.com");
+  c.nonNegative(u.initial_position, "uncertainty.initial_position");
+  c.atMost(u.initial_position, 0.1, "0.1 m", "uncertainty.initial_position");
+  c.nonNegative(u.initial_angle, "uncertainty.initial_angle");
+  c.atMost(u.initial_angle, M_PI / 4, "pi/4 rad", "uncertainty.initial_angle");
+  c.nonNegative(u.kinetic_friction_min, "uncertainty.kinetic_friction[0]");
+  c.finite(u.kinetic_friction_max, "uncertainty.kinetic_friction[1]");
+  if (!(u.kinetic_friction_min <= u.kinetic_friction_max))
+    c.fail("uncertainty.kinetic_friction must be [min, max] with min <= max (got [" +
+           fmt(u.kinetic_friction_min) + ", " + fmt(u.kinetic_friction_max) + "])");
 }
 
 Cell parseCell(const std::string& yaml_text, const std::string& label) {
@@ -239,7 +322,8 @@ Cell parseCell(const std::string& yaml_text, const std::string& label) {
             std::to_string(e.mark.column + 1) + ": " + e.msg);
   }
   if (root.IsNull()) rd.fail("the cell is empty (expected keys base, fingers, object, friction)");
-  rd.mapping(root, "", {"gravity", "base", "fingers", "object", "friction"});
+  rd.mapping(root, "",
+             {"gravity", "base", "fingers", "object", "friction", "sensing", "uncertainty"});
 
   Cell cell;
   cell.name = label;
@@ -278,6 +362,11 @@ Cell parseCell(const std::string& yaml_text, const std::string& label) {
   rd.mapping(friction, "friction", {"static", "kinetic"});
   cell.friction.mu_static = rd.number(friction, "friction", "static");
   cell.friction.mu_kinetic = rd.number(friction, "friction", "kinetic", 0.0, false);
+
+  const YAML::Node sensing = rd.get(root, "", "sensing", false);
+  if (sensing.IsDefined()) readSensing(rd, sensing, cell.sensing);
+  const YAML::Node uncertainty = rd.get(root, "", "uncertainty", false);
+  if (uncertainty.IsDefined()) readUncertainty(rd, uncertainty, cell.uncertainty);
 
   cell.validate();
   return cell;

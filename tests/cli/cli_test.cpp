@@ -534,3 +534,24 @@ TEST(PlanReorientation, BadInputIsRefusedWithExitTwo) {
     EXPECT_FALSE(std::ifstream(out).good()) << c.args << ": wrote a file";
   }
 }
+
+// ---- the cell file's sensing and uncertainty sections, through rbsf-analyze ----
+
+TEST(Analyze, BadSensingValueInTheCellExitsTwoNamingTheKey) {
+  const std::string cell = writeTemp(
+      "bad_sensing.yaml", slurp(kCells + "default.yaml") + "sensing: {part_pose: {rate: -5}}\n");
+  const Result r = run(kAnalyze + " --cell " + cell + " --pose 0.1,0.40,0");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("sensing.part_pose.rate"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bad_sensing.yaml"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << "no partial output: " << r.out;
+}
+
+TEST(Analyze, UnknownUncertaintyKeyInTheCellExitsTwoNamingTheKey) {
+  const std::string cell = writeTemp(
+      "bad_uncertainty.yaml", slurp(kCells + "default.yaml") + "uncertainty: {weight: 0.05}\n");
+  const Result r = run(kAnalyze + " --cell " + cell + " --pose 0.1,0.40,0");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("unknown key uncertainty.weight"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << "no partial output: " << r.out;
+}

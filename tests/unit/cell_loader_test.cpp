@@ -274,6 +274,116 @@ TEST(CellLoader, ExplicitOptionalKeysAreRead) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Sections sensing and uncertainty (sensing.h).
+
+void expectSensingEq(const Sensing& a, const Sensing& b) {
+  EXPECT_DOUBLE_EQ(a.joints.angle_noise, b.joints.angle_noise);
+  EXPECT_DOUBLE_EQ(a.joints.stroke_noise, b.joints.stroke_noise);
+  EXPECT_EQ(a.part_pose.present, b.part_pose.present);
+  EXPECT_DOUBLE_EQ(a.part_pose.rate, b.part_pose.rate);
+  EXPECT_DOUBLE_EQ(a.part_pose.latency, b.part_pose.latency);
+  EXPECT_DOUBLE_EQ(a.part_pose.position_noise, b.part_pose.position_noise);
+  EXPECT_DOUBLE_EQ(a.part_pose.angle_noise, b.part_pose.angle_noise);
+}
+
+void expectUncertaintyEq(const Uncertainty& a, const Uncertainty& b) {
+  EXPECT_DOUBLE_EQ(a.mass, b.mass);
+  EXPECT_DOUBLE_EQ(a.inertia, b.inertia);
+  EXPECT_DOUBLE_EQ(a.com, b.com);
+  EXPECT_DOUBLE_EQ(a.static_friction, b.static_friction);
+  EXPECT_DOUBLE_EQ(a.kinetic_friction_min, b.kinetic_friction_min);
+  EXPECT_DOUBLE_EQ(a.kinetic_friction_max, b.kinetic_friction_max);
+  EXPECT_DOUBLE_EQ(a.initial_position, b.initial_position);
+  EXPECT_DOUBLE_EQ(a.initial_angle, b.initial_angle);
+  EXPECT_DOUBLE_EQ(a.actuator_gain, b.actuator_gain);
+}
+
+TEST(CellLoader, AbsentSensingAndUncertaintyTakeTheDefaults) {
+  for (const std::string& extra : {std::string(""), std::string("sensing: {}\nuncertainty: {}\n"),
+                                   std::string("sensing: {joints: {}, part_pose: {}}\n")}) {
+    SCOPED_TRACE(extra);
+    const Cell c = parseCell(goodYaml() + extra);
+    expectSensingEq(c.sensing, Sensing{});
+    expectUncertaintyEq(c.uncertainty, Uncertainty{});
+  }
+  // The documented defaults (sensing.h), so a changed default is a deliberate change.
+  const Cell c = parseCell(goodYaml());
+  EXPECT_TRUE(c.sensing.part_pose.present);
+  EXPECT_DOUBLE_EQ(c.sensing.part_pose.rate, 100.0);
+  EXPECT_DOUBLE_EQ(c.sensing.part_pose.latency, 0.01);
+  EXPECT_DOUBLE_EQ(c.uncertainty.kinetic_friction_max, 0.05);
+}
+
+TEST(CellLoader, EverySensingAndUncertaintyKeyIsRead) {
+  const Cell c = parseCell(goodYaml() +
+                           "sensing:\n"
+                           "  joints: {noise: [2.0e-4, 3.0e-5]}\n"
+                           "  part_pose: {rate: 250, latency: 0.04, noise: [0.002, 0.01]}\n"
+                           "uncertainty:\n"
+                           "  mass: 0.25\n"
+                           "  inertia: 0.3\n"
+                           "  com: 0.004\n"
+                           "  static_friction: 0.35\n"
+                           "  kinetic_friction: [0.02, 0.08]\n"
+                           "  initial_position: 0.003\n"
+                           "  initial_angle: 0.02\n"
+                           "  actuator_gain: 0.07\n");
+  const Sensing& s = c.sensing;
+  EXPECT_DOUBLE_EQ(s.joints.angle_noise, 2.0e-4);
+  EXPECT_DOUBLE_EQ(s.joints.stroke_noise, 3.0e-5);
+  EXPECT_TRUE(s.part_pose.present);
+  EXPECT_DOUBLE_EQ(s.part_pose.rate, 250.0);
+  EXPECT_DOUBLE_EQ(s.part_pose.latency, 0.04);
+  EXPECT_DOUBLE_EQ(s.part_pose.position_noise, 0.002);
+  EXPECT_DOUBLE_EQ(s.part_pose.angle_noise, 0.01);
+  const Uncertainty& u = c.uncertainty;
+  EXPECT_DOUBLE_EQ(u.mass, 0.25);
+  EXPECT_DOUBLE_EQ(u.inertia, 0.3);
+  EXPECT_DOUBLE_EQ(u.com, 0.004);
+  EXPECT_DOUBLE_EQ(u.static_friction, 0.35);
+  EXPECT_DOUBLE_EQ(u.kinetic_friction_min, 0.02);
+  EXPECT_DOUBLE_EQ(u.kinetic_friction_max, 0.08);
+  EXPECT_DOUBLE_EQ(u.initial_position, 0.003);
+  EXPECT_DOUBLE_EQ(u.initial_angle, 0.02);
+  EXPECT_DOUBLE_EQ(u.actuator_gain, 0.07);
+}
+
+TEST(CellLoader, OmittedKeysInsideASectionKeepTheirDefaults) {
+  const Cell c = parseCell(goodYaml() +
+                           "sensing: {part_pose: {latency: 0.05}}\n"
+                           "uncertainty: {com: 0.01}\n");
+  const Sensing d;
+  EXPECT_DOUBLE_EQ(c.sensing.part_pose.latency, 0.05);
+  EXPECT_DOUBLE_EQ(c.sensing.part_pose.rate, d.part_pose.rate);
+  EXPECT_DOUBLE_EQ(c.sensing.part_pose.position_noise, d.part_pose.position_noise);
+  EXPECT_DOUBLE_EQ(c.sensing.part_pose.angle_noise, d.part_pose.angle_noise);
+  EXPECT_DOUBLE_EQ(c.sensing.joints.angle_noise, d.joints.angle_noise);
+  Uncertainty expected;
+  expected.com = 0.01;
+  expectUncertaintyEq(c.uncertainty, expected);
+}
+
+TEST(CellLoader, PartPoseNoneMeansOnlyTheJointsAreSensed) {
+  const Cell c = parseCell(goodYaml() + "sensing:\n  joints: {noise: [0, 0]}\n  part_pose: none\n");
+  EXPECT_FALSE(c.sensing.part_pose.present);
+  EXPECT_DOUBLE_EQ(c.sensing.joints.angle_noise, 0.0);  // noise-free encoders are allowed
+  EXPECT_DOUBLE_EQ(c.sensing.joints.stroke_noise, 0.0);
+  EXPECT_NO_THROW(c.validate());
+}
+
+TEST(CellLoader, BoundaryValuesOfSensingAndUncertaintyAreAccepted) {
+  const Cell c = parseCell(goodYaml() +
+                           "sensing: {part_pose: {rate: 10000, latency: 1, noise: [0, 0]}}\n"
+                           "uncertainty: {mass: 0, inertia: 0.999, com: 0.1, static_friction: 0,\n"
+                           "  kinetic_friction: [0.1, 0.1], initial_position: 0.1,\n"
+                           "  initial_angle: 0.7853981633974483, actuator_gain: 0}\n");
+  EXPECT_DOUBLE_EQ(c.sensing.part_pose.rate, 10000.0);
+  EXPECT_DOUBLE_EQ(c.uncertainty.kinetic_friction_min, 0.1);  // min == max is allowed
+  EXPECT_DOUBLE_EQ(c.uncertainty.kinetic_friction_max, 0.1);
+  EXPECT_DOUBLE_EQ(c.uncertainty.initial_angle, M_PI / 4);
+}
+
+// ---------------------------------------------------------------------------------------
 // Rejected input: one case per rule; the message names the label and the key path.
 
 struct BadCase {
@@ -452,6 +562,108 @@ std::vector<BadCase> badCases() {
       {"CommentOnlyDocument", "# nothing\n", {"the cell is empty"}},
       {"RootIsAList", "- 1\n- 2\n", {"the cell must be a mapping (got a list)"}},
       {"RootIsAScalar", "hello\n", {"the cell must be a mapping (got 'hello')"}},
+      // sensing
+      {"UnknownSensingKey",
+       goodYaml() + "sensing: {camera: {rate: 10}}\n",
+       {"unknown key sensing.camera (expected one of: joints, part_pose)"}},
+      {"UnknownJointsKey",
+       goodYaml() + "sensing: {joints: {nois: [0, 0]}}\n",
+       {"unknown key sensing.joints.nois (expected one of: noise)"}},
+      {"UnknownPartPoseKey",
+       goodYaml() + "sensing: {part_pose: {delay: 0.01}}\n",
+       {"unknown key sensing.part_pose.delay (expected one of: rate, latency, noise)"}},
+      {"SensingNotAMapping",
+       goodYaml() + "sensing: none\n",
+       {"sensing must be a mapping (got 'none')"}},
+      {"JointsNotAMapping",
+       goodYaml() + "sensing: {joints: [0, 0]}\n",
+       {"sensing.joints must be a mapping (got a list)"}},
+      {"PartPoseSometimes",
+       goodYaml() + "sensing: {part_pose: sometimes}\n",
+       {"sensing.part_pose must be a mapping or none (got 'sometimes')"}},
+      {"PartPoseEmpty",
+       goodYaml() + "sensing:\n  part_pose:\n",
+       {"sensing.part_pose must be a mapping or none (got an empty value)"}},
+      {"NegativeJointNoise",
+       goodYaml() + "sensing: {joints: {noise: [1.0e-5, -0.5]}}\n",
+       {"sensing.joints.noise[1] must not be negative (got -0.5)"}},
+      {"NegativePartPoseNoise",
+       goodYaml() + "sensing: {part_pose: {noise: [-0.001, 0.005]}}\n",
+       {"sensing.part_pose.noise[0] must not be negative (got -0.001)"}},
+      {"PartPoseNoiseThreeEntries",
+       goodYaml() + "sensing: {part_pose: {noise: [0.001, 0.002, 0.003]}}\n",
+       {"sensing.part_pose.noise must be a list of 2 numbers (got 3 entries)"}},
+      {"JointNoiseThreeEntries",
+       goodYaml() + "sensing: {joints: {noise: [1, 2, 3]}}\n",
+       {"sensing.joints.noise must be a list of 2 numbers (got 3 entries)"}},
+      {"JointNoiseNotNumber",
+       goodYaml() + "sensing: {joints: {noise: [small, 0]}}\n",
+       {"sensing.joints.noise[0] must be a number (got 'small')"}},
+      {"ZeroRate",
+       goodYaml() + "sensing: {part_pose: {rate: 0}}\n",
+       {"sensing.part_pose.rate must be positive (got 0)"}},
+      {"RateTooHigh",
+       goodYaml() + "sensing: {part_pose: {rate: 20000}}\n",
+       {"sensing.part_pose.rate must be at most 10000 Hz (got 20000)"}},
+      {"RateNotNumber",
+       goodYaml() + "sensing: {part_pose: {rate: fast}}\n",
+       {"sensing.part_pose.rate must be a number (got 'fast')"}},
+      {"LatencyTooLong",
+       goodYaml() + "sensing: {part_pose: {latency: 2}}\n",
+       {"sensing.part_pose.latency must be at most 1 s (got 2)"}},
+      {"NegativeLatency",
+       goodYaml() + "sensing: {part_pose: {latency: -0.01}}\n",
+       {"sensing.part_pose.latency must not be negative (got -0.01)"}},
+      // uncertainty
+      {"UnknownUncertaintyKey",
+       goodYaml() + "uncertainty: {friction: 0.1}\n",
+       {"unknown key uncertainty.friction (expected one of: mass, inertia, com, static_friction, "
+        "kinetic_friction, initial_position, initial_angle, actuator_gain)"}},
+      {"UncertaintyNotAMapping",
+       goodYaml() + "uncertainty: 0.05\n",
+       {"uncertainty must be a mapping (got '0.05')"}},
+      {"MassUncertaintyOne",
+       goodYaml() + "uncertainty: {mass: 1.0}\n",
+       {"uncertainty.mass must lie in [0, 1) (got 1)"}},
+      {"InertiaUncertaintyNegative",
+       goodYaml() + "uncertainty: {inertia: -0.1}\n",
+       {"uncertainty.inertia must lie in [0, 1) (got -0.1)"}},
+      {"StaticFrictionUncertaintyTooLarge",
+       goodYaml() + "uncertainty: {static_friction: 1.5}\n",
+       {"uncertainty.static_friction must lie in [0, 1) (got 1.5)"}},
+      {"ActuatorGainUncertaintyTooLarge",
+       goodYaml() + "uncertainty: {actuator_gain: 2}\n",
+       {"uncertainty.actuator_gain must lie in [0, 1) (got 2)"}},
+      {"ComUncertaintyTooLarge",
+       goodYaml() + "uncertainty: {com: 0.5}\n",
+       {"uncertainty.com must be at most 0.1 m (got 0.5)"}},
+      {"NegativeComUncertainty",
+       goodYaml() + "uncertainty: {com: -0.001}\n",
+       {"uncertainty.com must not be negative (got -0.001)"}},
+      {"InitialPositionTooLarge",
+       goodYaml() + "uncertainty: {initial_position: 0.2}\n",
+       {"uncertainty.initial_position must be at most 0.1 m (got 0.2)"}},
+      {"InitialAngleTooLarge",
+       goodYaml() + "uncertainty: {initial_angle: 1.0}\n",
+       {"uncertainty.initial_angle must be at most pi/4 rad (got 1)"}},
+      {"NegativeInitialAngle",
+       goodYaml() + "uncertainty: {initial_angle: -0.01}\n",
+       {"uncertainty.initial_angle must not be negative (got -0.01)"}},
+      {"KineticFrictionReversed",
+       goodYaml() + "uncertainty: {kinetic_friction: [0.1, 0.05]}\n",
+       {"uncertainty.kinetic_friction must be [min, max] with min <= max (got [0.1, 0.05])"}},
+      {"KineticFrictionNegative",
+       goodYaml() + "uncertainty: {kinetic_friction: [-0.1, 0.05]}\n",
+       {"uncertainty.kinetic_friction[0] must not be negative (got -0.1)"}},
+      {"KineticFrictionNotNumber",
+       goodYaml() + "uncertainty: {kinetic_friction: [low, 0.05]}\n",
+       {"uncertainty.kinetic_friction[0] must be a number (got 'low')"}},
+      {"KineticFrictionScalar",
+       goodYaml() + "uncertainty: {kinetic_friction: 0.05}\n",
+       {"uncertainty.kinetic_friction must be a list of 2 numbers (got '0.05')"}},
+      {"DuplicateUncertaintyKey",
+       goodYaml() + "uncertainty:\n  mass: 0.1\n  mass: 0.2\n",
+       {"duplicate key uncertainty.mass"}},
   };
 }
 
@@ -578,6 +790,43 @@ TEST(CellValidate, ChecksEveryInvariant) {
       {[](Cell& c) { c.friction.mu_static = -0.5; }, "friction.static must not be negative"},
       {[](Cell& c) { c.friction.mu_kinetic = 0.7; },
        "friction.kinetic (0.7) must not exceed friction.static (0.5)"},
+      {[](Cell& c) { c.sensing.joints.angle_noise = NAN; },
+       "sensing.joints.noise[0] must be a finite number (got nan)"},
+      {[](Cell& c) { c.sensing.joints.stroke_noise = -1; },
+       "sensing.joints.noise[1] must not be negative (got -1)"},
+      {[](Cell& c) { c.sensing.part_pose.rate = -5; },
+       "sensing.part_pose.rate must be positive (got -5)"},
+      {[](Cell& c) { c.sensing.part_pose.rate = INFINITY; },
+       "sensing.part_pose.rate must be a finite number (got inf)"},
+      {[](Cell& c) { c.sensing.part_pose.rate = 20000; },
+       "sensing.part_pose.rate must be at most 10000 Hz (got 20000)"},
+      {[](Cell& c) { c.sensing.part_pose.latency = 1.5; },
+       "sensing.part_pose.latency must be at most 1 s (got 1.5)"},
+      {[](Cell& c) {  // checked even without a part-pose sensor
+         c.sensing.part_pose.present = false;
+         c.sensing.part_pose.latency = -1;
+       },
+       "sensing.part_pose.latency must not be negative (got -1)"},
+      {[](Cell& c) { c.sensing.part_pose.position_noise = -1; },
+       "sensing.part_pose.noise[0] must not be negative"},
+      {[](Cell& c) { c.sensing.part_pose.angle_noise = NAN; },
+       "sensing.part_pose.noise[1] must be a finite number"},
+      {[](Cell& c) { c.uncertainty.mass = 1.5; }, "uncertainty.mass must lie in [0, 1) (got 1.5)"},
+      {[](Cell& c) { c.uncertainty.inertia = 1; },
+       "uncertainty.inertia must lie in [0, 1) (got 1)"},
+      {[](Cell& c) { c.uncertainty.static_friction = NAN; },
+       "uncertainty.static_friction must be a finite number"},
+      {[](Cell& c) { c.uncertainty.actuator_gain = -0.1; },
+       "uncertainty.actuator_gain must lie in [0, 1) (got -0.1)"},
+      {[](Cell& c) { c.uncertainty.com = 0.2; }, "uncertainty.com must be at most 0.1 m (got 0.2)"},
+      {[](Cell& c) { c.uncertainty.initial_position = -1e-3; },
+       "uncertainty.initial_position must not be negative"},
+      {[](Cell& c) { c.uncertainty.initial_angle = M_PI / 2; },
+       "uncertainty.initial_angle must be at most pi/4 rad"},
+      {[](Cell& c) { c.uncertainty.kinetic_friction_max = INFINITY; },
+       "uncertainty.kinetic_friction[1] must be a finite number (got inf)"},
+      {[](Cell& c) { c.uncertainty.kinetic_friction_min = 0.1; },
+       "uncertainty.kinetic_friction must be [min, max] with min <= max (got [0.1, 0.05])"},
   };
   for (const auto& m : muts) {
     Cell c = codeCell();

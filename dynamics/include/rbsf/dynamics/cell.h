@@ -59,12 +59,14 @@ struct Cell {
   int numFingers() const { return static_cast<int>(fingers.size()); }
 
   /// \brief Check every invariant the model relies on (positive masses and inertias,
-  ///        ordered limits, 1 <= m <= kMaxFingers, a shape).
+  ///        ordered limits, 1 <= m <= kMaxFingers, a shape) and the ranges of the sensing
+  ///        and uncertainty sections (non-negative noise, relative uncertainties in [0, 1)).
   /// \throws InputError naming the offending key.
   void validate() const;
 };
 
-/// \brief Read a cell from a YAML file (format in MODEL.md "Files").
+/// \brief Read a cell from a YAML file (format in MODEL.md "Files", with the optional
+///        sections `sensing` and `uncertainty` of sensing.h).
 /// \throws InputError for a missing file, malformed YAML, a missing or non-numeric key,
 ///         or an invalid value; the message names the key (e.g. "fingers[1].mass").
 Cell loadCell(const std::string& path);
