@@ -2,18 +2,18 @@
 // m = 3 and m = 6 fingers (phase C, every contact sticking, the indeterminate case of
 // paper 2.2), and the part sliding frictionlessly on m = 3 fingers (phase U).
 // Also the 1 ms control loop's other two calls: sampling a reference of an optimised
-// plan's size (101 knots, 100 tau ramps) and the tracking controller.
+// plan's size (101 knots, 100 tau ramps) and the control law.
 // Part of build/bench/rbsf_micro_bench (micro_bench_main.cpp).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <memory>
 
+#include "rbsf/dynamics/control_law.h"
 #include "rbsf/dynamics/holding.h"
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/reference_trajectory.h"
 #include "rbsf/dynamics/simulator.h"
-#include "rbsf/dynamics/tracking_controller.h"
 
 namespace rbsf {
 namespace {
@@ -125,22 +125,41 @@ void BM_ReferenceSample(benchmark::State& state) {
 }
 BENCHMARK(BM_ReferenceSample);
 
-void BM_TrackingControllerCompute(benchmark::State& state) {
+/// One control period of the control law (control_law.h) holding the part at rest on three
+/// sticking fingers for 2 s (the estimator's heaviest simulator step): the step, the joint
+/// update, a part pose every 10th call (carried over the 10 ms latency), and the gain;
+/// Arg 1 part feedback (TV-LQR), 0 joint PD.
+void BM_ControlLawCompute(benchmark::State& state) {
   const RbsfModel model(benchCell(3, 0.5));
   const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.40, 0.0}, 0.0);
-  const ReferenceTrajectory ref = benchReference(q0);
-  const TrackingController controller(model, q0);
-  ReferenceSample sample;
-  ref.sample(0.5, sample);
-  const VecQ v = VecQ::Constant(q0.size(), 0.01);
-  VecU tau;
+  ModelData data(model.numFingers());
+  model.updateContacts(q0, data);
+  const HoldingSolution hold = holdingTorques(model, q0, data);
+  ReferenceTrajectory reference;
+  reference.addKnot(0.0, q0, VecQ::Zero(q0.size()));
+  reference.addKnot(2.0, q0, VecQ::Zero(q0.size()));
+  reference.addInputPiece(0.0, 2.0, hold.tau, VecU(), Phase::kC);
+  Sensing sensing;
+  sensing.part_pose.present = state.range(0) == 1;
+  const FeedbackSchedule schedule(model, reference, sensing, SimulatorSettings{});
+  ControlLaw law(schedule);
+  ReferenceSample at;
+  VecU tau, joints(model.controlDim());
+  long k = 0;
   for (auto _ : state) {
-    controller.compute(q0, v, sample, tau);
+    const double t = 1e-3 * static_cast<double>(k % 2000);
+    if (k % 2000 == 0) law.reset();
+    schedule.reference(t, at);
+    for (int j = 0; j < joints.size(); ++j) joints[j] = at.q[layout::inputToConfig(j)];
+    if (k % 10 == 0)
+      law.addPartPose(t - 0.01, Pose{at.q[layout::kX], at.q[layout::kY], at.q[layout::kPhi]});
+    law.compute(t, joints, tau);
     benchmark::DoNotOptimize(tau.data());
     benchmark::ClobberMemory();
+    ++k;
   }
 }
-BENCHMARK(BM_TrackingControllerCompute);
+BENCHMARK(BM_ControlLawCompute)->Arg(1)->Arg(0);
 
 }  // namespace
 }  // namespace rbsf

@@ -1,17 +1,22 @@
 // rbsf-controller-loop: a cell controller's 1 kHz loop around the library's facade
-// (rbsf/controller/reorientation_controller.h), with the hybrid simulator as the plant.
+// (rbsf/controller/reorientation_controller.h), with the hybrid simulator as the plant and
+// the cell's sensors simulated (rbsf/dynamics/sensor_model.h: noisy joints every tick, the
+// part's pose at the sensor's rate, late by its latency).
 //
-//   1. The part rests on the fingers at --start; the loop holds it there (the tracking
-//      controller around the start at rest with the holding tau as feed-forward) while
-//      the worker thread plans the reorientation. The loop never waits for the planner.
-//   2. When the plan is published, the loop executes it: computeTorque(t, q, v) each
-//      millisecond, the plant steps 1 ms, and the tracking error is recorded.
-//   3. After the plan's end it keeps tracking the final reference for --settle seconds
-//      (planner plans need not end at rest: the part then moves on).
-// The loop is paced by the wall clock (one tick per millisecond) unless --no-pace.
+//   1. The part rests on the fingers at --start; while the worker thread plans and
+//      certifies, the loop holds it with the control law on a plan of no motion (the start
+//      at rest with the holding tau: a hold is a plan like any other). The loop never waits
+//      for the planner.
+//   2. When a plan is published, the loop executes it: each millisecond the joints go to
+//      track(t, joints) and each part pose to addPartPose(stamp, pose); the plant steps 1 ms.
+//   3. After the plan's end the law holds the final pose at rest for --settle seconds.
+// The facade publishes only certified plans unless --accept-uncertified. The loop is paced
+// by the wall clock (one tick per millisecond) unless --no-pace.
 //
-// Exit status: 0 the plan was executed (the tracking error and the final pose are
-// printed); 3 planning failed (outcome printed); 2 bad input; 1 internal error.
+// Exit status: 0 the plan was executed (the final pose error and the loop's timing are
+// printed); 4 the plan failed its certificate and was not run (verdict on stderr); 3
+// planning failed otherwise (no path, time limit, cancelled); 2 bad input (an option, the
+// cell, a start the fingers cannot hold, a goal no finger reaches); 1 internal error.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -21,9 +26,11 @@
 #include <thread>
 
 #include "rbsf/controller/reorientation_controller.h"
+#include "rbsf/dynamics/control_law.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/holding.h"
 #include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/sensor_model.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/tools/cli_values.h"
@@ -62,22 +69,41 @@ class Pacer {
   long overruns_ = 0;
 };
 
+/// The law that holds the part at rest at q0 with the holding tau: a plan of no motion.
+ReferenceTrajectory holdReference(const RbsfModel& model, const VecQ& q0) {
+  ModelData data(model.numFingers());
+  model.updateContacts(q0, data);
+  const HoldingSolution holding = holdingTorques(model, q0, data);
+  if (!holding.feasible) throw InputError("--start: the fingers cannot hold the part at rest");
+  ReferenceTrajectory hold;
+  hold.addKnot(0.0, q0, VecQ::Zero(q0.size()));
+  hold.addKnot(0.1, q0, VecQ::Zero(q0.size()));
+  hold.addInputPiece(0.0, 0.1, holding.tau, VecU(), Phase::kC);
+  return hold;
+}
+
 int run(int argc, char** argv) {
   CLI::App app{
-      "Simulated 1 kHz cell-controller loop: hold the part while the facade plans "
-      "on its worker thread, then track the plan; prints the tracking error.",
+      "Simulated 1 kHz cell-controller loop: hold the part while the facade plans and "
+      "certifies on its worker thread, then execute the plan with the control law on "
+      "simulated sensors; prints the final pose error and the loop's timing.",
       "rbsf-controller-loop"};
-  app.footer("Exit status: 0 plan executed; 3 planning failed; 2 bad input; 1 internal error.");
+  app.footer(
+      "Exit status: 0 plan executed; 4 the plan failed its certificate (not run); 3 planning "
+      "failed; 2 bad input; 1 internal error.");
   std::string cell, start_text, goal_text, theta_text = "0", limit_text = "30", seed_text = "1",
-                                           settle_text = "0";
-  bool no_pace = false, optimize = false;
+                                           settle_text = "1", trials_text = "32";
+  bool no_pace = false, optimize = false, accept_uncertified = false;
   app.add_option("--cell", cell, "cell YAML file")->required();
   app.add_option("--start", start_text, "start pose x,y,phi (part at rest)")->required();
   app.add_option("--goal", goal_text, "goal pose x,y,phi")->required();
   app.add_option("--start-theta", theta_text, "base angle at the start (default 0)");
   app.add_option("--time-limit", limit_text, "planning time limit [s] (default 30)");
   app.add_option("--seed", seed_text, "planner seed (default 1)");
-  app.add_option("--settle", settle_text, "tracking after the plan's end [s] (default 0)");
+  app.add_option("--settle", settle_text, "holding the final pose after the plan [s] (default 1)");
+  app.add_option("--trials", trials_text, "closed-loop trials of the certificate (default 32)");
+  app.add_flag("--accept-uncertified", accept_uncertified,
+               "execute a plan that failed its certificate (a cell should not)");
   app.add_flag("--optimize", optimize, "refine the plan with rbsf::trajopt");
   std::string knots_text = "100";
   app.add_option("--knots", knots_text, "optimiser collocation intervals (default 100)");
@@ -96,100 +122,106 @@ int run(int argc, char** argv) {
   request.planner.seed = static_cast<std::uint32_t>(seed);
   const double settle = parseNumber(settle_text, "--settle");
   if (!(settle >= 0.0 && settle <= 60.0)) throw InputError("--settle: must be in [0, 60] s");
+  const double trials = parseNumber(trials_text, "--trials");
+  if (!(trials >= 1 && trials <= 100000 && trials == std::floor(trials)))
+    throw InputError("--trials: must be an integer in 1..100000 (got " + trials_text + ")");
+  request.certificate.trials = static_cast<int>(trials);
+  request.accept_uncertified = accept_uncertified;
   request.optimize = optimize;
   const double knots = parseNumber(knots_text, "--knots");
   if (!(knots >= 2 && knots <= 2000 && knots == std::floor(knots)))
     throw InputError("--knots: must be an integer in 2..2000 (got " + knots_text + ")");
   request.optimizer.knots = static_cast<int>(knots);
 
-  controller::ReorientationController ctl(cell);
+  FeedbackSettings feedback;
+  feedback.settle_time = settle;
+  controller::ReorientationController ctl(cell, feedback);
   const RbsfModel& model = ctl.model();
   const int m = model.numFingers();
-
-  // The plant at the start, at rest, and the hold: PD around the start plus holding tau.
-  const VecQ q0 = restingConfiguration(model, request.problem.start, request.problem.start_theta);
-  ModelData data(m);
-  model.updateContacts(q0, data);
-  const HoldingSolution holding = holdingTorques(model, q0, data);
-  if (!holding.feasible) throw InputError("--start: the fingers cannot hold the part at rest");
-  ReferenceSample hold;
-  hold.q = q0;
-  hold.v = VecQ::Zero(q0.size());
-  hold.tau = holding.tau;
-  const TrackingController holder(model, q0);
-  const Simulator plant(model, request.planner.simulator);
   const double h = request.planner.simulator.time_step;
+
+  // The plant at the start, at rest; its sensors; the hold law.
+  const VecQ q0 = restingConfiguration(model, request.problem.start, request.problem.start_theta);
+  const FeedbackSchedule hold(model, holdReference(model, q0), model.cell().sensing,
+                              request.planner.simulator);
+  ControlLaw holder(hold);
+  const Simulator plant(model, request.planner.simulator);
   auto ws = std::make_unique<SimulatorWorkspace>(m);
   SimState state(q0, VecQ::Zero(q0.size()));
-  VecU tau(model.controlDim());
+  SensorModel sensors(model.cell().sensing, h, 1);
+  VecU tau(model.controlDim()), joints(model.controlDim());
   ReferenceSample ref;
 
   // 1. Hold while the worker plans.
   Pacer pacer(!no_pace);
   if (!ctl.plan(request)) throw std::runtime_error("the controller is busy");
-  long hold_ticks = 0, no_plan_samples = 0;
+  long tick = 0, no_plan_samples = 0;
   double hold_error = 0.0;
   while (ctl.status() == controller::ControllerStatus::kPlanning) {
     pacer.tickStart();
     no_plan_samples += !ctl.sample(0.0, ref);  // nothing published yet: "no plan"
-    holder.compute(state.q, state.v, hold, tau);
+    sensors.joints(state.q, joints);
+    sensors.partPose(tick, state.q,
+                     [&](double stamp, const Pose& p) { holder.addPartPose(stamp, p); });
+    holder.compute(static_cast<double>(tick) * h, joints, tau);
     plant.step(state, tau, *ws);
-    hold_error = std::max(hold_error, TrackingController::jointError(state.q, hold));
-    ++hold_ticks;
+    hold_error = std::max(hold_error, (state.q - q0).head<3>().cwiseAbs().maxCoeff());
+    ++tick;
     pacer.tickEnd();
   }
   ctl.wait();
   const controller::RequestResult result = ctl.result();
   std::printf(
-      "planning   %s after %.3f s (%ld loop ticks holding the part, worst joint error "
-      "%.2e; %ld samples said \"no plan\")\n",
-      controller::toString(result.outcome), result.plan.planning_time, hold_ticks, hold_error,
+      "planning   %s after %.3f s (%ld loop ticks holding the part, which moved at most "
+      "%.2e m or rad; %ld samples said \"no plan\")\n",
+      controller::toString(result.outcome), result.plan.planning_time, tick, hold_error,
       no_plan_samples);
   if (!result.message.empty()) std::printf("           %s\n", result.message.c_str());
-  if (ctl.status() != controller::ControllerStatus::kReady) return 3;
+  if (ctl.status() != controller::ControllerStatus::kReady) {
+    if (result.outcome == controller::PlanOutcome::kInputError) throw InputError(result.message);
+    if (result.outcome == controller::PlanOutcome::kNotCertified) {
+      std::fprintf(stderr, "rbsf-controller-loop: the plan was not run: %s\n",
+                   result.message.c_str());
+      return 4;
+    }
+    std::fprintf(stderr, "rbsf-controller-loop: planning failed (%s): %s\n",
+                 controller::toString(result.outcome), result.message.c_str());
+    return 3;
+  }
 
-  // 2. Execute the plan from where the hold left the plant, then settle.
+  // 2. Execute the plan from where the hold left the plant, then hold its end.
   double duration = 0.0;
   VecQ plan_q0;
   ctl.publishedPlan(duration, plan_q0);
   const double start_offset = (state.q - plan_q0).cwiseAbs().maxCoeff();
   const long steps = std::lround((duration + settle) / h);
-  double max_error = 0.0, sum_sq = 0.0;
-  VecQ q_end = state.q;  // the plant at the plan's end
+  double max_error = 0.0;
   for (long k = 0; k < steps; ++k) {
     pacer.tickStart();
-    const double t = k * h;
-    ctl.computeTorque(t, state.q, state.v, tau, ref);
+    const double t = static_cast<double>(k) * h;
+    sensors.joints(state.q, joints);
+    sensors.partPose(k, state.q, [&](double stamp, const Pose& p) { ctl.addPartPose(stamp, p); });
+    ctl.track(t, joints, tau);
     plant.step(state, tau, *ws);
-    ctl.sample(t + h, ref);  // the reference at the end of the step
-    const double e = TrackingController::jointError(state.q, ref);
-    if (t + h <= duration + 0.5 * h) {
-      max_error = std::max(max_error, e);
-      sum_sq += e * e;
-      q_end = state.q;
+    ctl.sample(t + h, ref);
+    for (int j = 0; j < model.controlDim(); ++j) {
+      const int c = layout::inputToConfig(j);
+      if (t + h <= duration) max_error = std::max(max_error, std::abs(state.q[c] - ref.q[c]));
     }
     pacer.tickEnd();
   }
-  const long plan_steps = std::max(1L, std::lround(duration / h));
   const auto& goal = request.problem.goal;
-  const auto pos_err = [&](const VecQ& q) {
-    return std::hypot(q[layout::kX] - goal.x, q[layout::kY] - goal.y);
-  };
-  const auto ang_err = [&](const VecQ& q) {
-    return std::remainder(q[layout::kPhi] - goal.phi, 2.0 * M_PI) * 180.0 / M_PI;
-  };
-  const VecQ& q_plan_end = result.plan.samples.back().q;
+  const double pos_err = std::hypot(state.q[layout::kX] - goal.x, state.q[layout::kY] - goal.y);
+  const double ang_err =
+      std::remainder(state.q[layout::kPhi] - goal.phi, 2.0 * M_PI) * 180.0 / M_PI;
   std::printf("plan       %.3f s, %zu segments, phases %s (%s)\n", duration,
               result.plan.segments.size(), result.plan.phaseSequence().c_str(),
               controller::toString(result.outcome));
-  std::printf("tracking   max joint error %.3e, rms %.3e (rad or m; start offset %.1e)\n",
-              max_error, std::sqrt(sum_sq / plan_steps), start_offset);
-  std::printf("goal error planned %.4f m %.3f deg; executed %.4f m %.3f deg\n", pos_err(q_plan_end),
-              ang_err(q_plan_end), pos_err(q_end), ang_err(q_end));
-  if (settle > 0.0) {
-    std::printf("after      %.2f s more: %.4f m %.3f deg from the goal\n", settle, pos_err(state.q),
-                ang_err(state.q));
-  }
+  std::printf("certificate %s\n", planner::verdictText(result.plan.certificate).c_str());
+  std::printf(
+      "executed   max joint error %.3e (rad or m; start offset %.1e); %.2f s after the "
+      "end the part is %.4f m and %.3f deg from the goal\n",
+      max_error, start_offset, settle, pos_err, ang_err);
   if (no_pace) {
     std::printf("loop       worst tick %.1f us (unpaced)\n", 1e6 * pacer.worst());
   } else {

@@ -1,13 +1,14 @@
 #include "rbsf/controller/reorientation_controller.h"
 
+#include <algorithm>
 #include <exception>
 #include <mutex>
 #include <thread>
 #include <utility>
 
+#include "rbsf/dynamics/control_law.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/planner/plan_reference.h"
-#include "rbsf/planner/plan_replay.h"
 #ifdef RBSF_CONTROLLER_WITH_TRAJOPT
 #include "rbsf/trajopt/plan_refinement.h"
 #endif
@@ -37,6 +38,8 @@ const char* toString(PlanOutcome outcome) {
       return "exact";
     case PlanOutcome::kOptimized:
       return "optimized";
+    case PlanOutcome::kNotCertified:
+      return "not certified";
     case PlanOutcome::kApproximate:
       return "approximate";
     case PlanOutcome::kNoPath:
@@ -53,42 +56,49 @@ const char* toString(PlanOutcome outcome) {
 
 namespace {
 
-/// \brief What a real-time reader sees: one plan's reference and its tracking controller.
+/// \brief What a real-time reader sees: one plan's schedule (reference and gains), and
+///        the law the loop thread runs on it (its only mutable part).
 struct PublishedPlan {
   PublishedPlan(std::uint64_t id_, const RbsfModel& model, const planner::Plan& plan,
-                const TrackingSettings& tracking_settings)
+                const FeedbackSettings& feedback)
       : id(id_),
         duration(plan.duration()),
-        time_step(plan.simulator.time_step),
         q0(plan.q0),
-        reference(planner::makeReference(plan)),
-        tracking(model, plan.q0, tracking_settings) {}
+        schedule(model, planner::makeReference(plan), model.cell().sensing, plan.simulator,
+                 feedback),
+        law(schedule) {}
 
   std::uint64_t id;
   double duration;
-  double time_step;  // h of the plan's simulator: the control period computeTorque assumes
   VecQ q0;
-  ReferenceTrajectory reference;
-  TrackingController tracking;
+  FeedbackSchedule schedule;
+  mutable ControlLaw law;  ///< the loop thread's alone (track, addPartPose)
 };
 
 }  // namespace
 
 struct ReorientationController::Impl {
-  Impl(Cell cell, const TrackingSettings& tracking_settings)
-      : model(std::move(cell)), tracking(tracking_settings) {}
+  Impl(Cell cell, const FeedbackSettings& feedback_settings)
+      : model(std::move(cell)), feedback(feedback_settings) {}
 
   void run(ReorientationRequest request);
+  /// \brief The loop thread meets plan `p`: a plan it has not met starts its law afresh.
+  void start(const PublishedPlan& p) noexcept {
+    if (p.id == tracked_id) return;
+    p.law.reset();
+    tracked_id = p.id;
+  }
   void finish(PlanOutcome outcome, std::string message, planner::Plan plan, double best,
               bool publish_it);
 
   const RbsfModel model;
-  const TrackingSettings tracking;
+  const FeedbackSettings feedback;
   detail::SnapshotSlots<PublishedPlan> slots;
   std::atomic<ControllerStatus> status{ControllerStatus::kIdle};
   std::atomic<PlanOutcome> outcome{PlanOutcome::kNone};
   std::atomic<bool> cancel{false};
-  std::uint64_t next_id = 1;  // worker only (one at a time)
+  std::uint64_t next_id = 1;     // worker only (one at a time)
+  std::uint64_t tracked_id = 0;  // loop thread only: the plan whose law track() last ran
 
   std::mutex mutex;  // guards worker (the handle) and result; never taken by a sampler
   std::thread worker;
@@ -100,7 +110,7 @@ void ReorientationController::Impl::finish(PlanOutcome how, std::string message,
   std::uint64_t id = 0;
   if (publish_it) {
     id = next_id++;
-    slots.publish(std::make_unique<const PublishedPlan>(id, model, plan, tracking));
+    slots.publish(std::make_unique<const PublishedPlan>(id, model, plan, feedback));
   }
   {
     const std::lock_guard<std::mutex> lock(mutex);
@@ -134,38 +144,46 @@ void ReorientationController::Impl::run(ReorientationRequest request) {
       finish(PlanOutcome::kNoPath, "the planner produced no path", {}, best, false);
       return;
     }
-    if (plan.status != "exact") {
-      const bool accept = request.accept_approximate;
-      finish(PlanOutcome::kApproximate,
-             "time limit: closest approach " + std::to_string(best) + " tolerance units",
-             std::move(plan), best, accept);
-      return;
-    }
-    std::string note;
+    planner::CertificateSettings certificate = request.certificate;
+    certificate.trial.position_tolerance = request.planner.position_tolerance;
+    certificate.trial.angle_tolerance = request.planner.angle_tolerance;
+    certificate.feedback = feedback;
     PlanOutcome how = PlanOutcome::kExact;
-    if (request.optimize) {
+    std::string note;
+    if (plan.status == "exact" && request.optimize) {
 #ifdef RBSF_CONTROLLER_WITH_TRAJOPT
       trajopt::OptimizerSettings opt = request.optimizer;
       opt.cancel = &cancel;
       const trajopt::PlanOptimizer optimizer(model, opt);
-      // The acceptance rule of plan-reorientation (plan_replay.h): the closed-loop replay
-      // with this controller's tracking gains must reach the goal in the planned phases.
-      const Simulator simulator(model, request.planner.simulator);
-      planner::ReplaySettings replay;
-      replay.position_tolerance = request.planner.position_tolerance;
-      replay.angle_tolerance = request.planner.angle_tolerance;
-      replay.tracking = tracking;
-      trajopt::RefineOutcome refined = trajopt::refinePlan(optimizer, simulator, plan, replay);
-      if (cancel.load()) {
-        finish(PlanOutcome::kCancelled, "cancelled while optimising", std::move(plan), best, false);
-        return;
-      }
-      if (refined.accepted) how = PlanOutcome::kOptimized;
-      note = std::move(refined.reason);
+      trajopt::RefineSettings refine;
+      refine.certificate = certificate;
+      trajopt::RefineOutcome refined = trajopt::refinePlan(optimizer, plan, refine);
+      if (refined.refined) how = PlanOutcome::kOptimized;
+      note = refined.refined ? "" : refined.reason + "; ";
       plan = std::move(refined.plan);
 #else
-      note = "optimisation not used: rbsf was built without rbsf::trajopt";
+      note = "optimisation not used: rbsf was built without rbsf::trajopt; ";
+      plan.certificate = planner::certify(model, plan, certificate, nullptr, &cancel);
 #endif
+    } else {
+      plan.certificate = planner::certify(model, plan, certificate, nullptr, &cancel);
+    }
+    if (cancel.load()) {
+      finish(PlanOutcome::kCancelled, "cancelled while optimising or certifying", std::move(plan),
+             best, false);
+      return;
+    }
+    note += planner::verdictText(plan.certificate);
+    if (plan.status != "exact") {
+      finish(PlanOutcome::kApproximate,
+             "time limit: closest approach " + std::to_string(best) + " tolerance units; " + note,
+             std::move(plan), best, request.accept_approximate);
+      return;
+    }
+    if (!plan.certificate.certified) {
+      finish(PlanOutcome::kNotCertified, std::move(note), std::move(plan), best,
+             request.accept_uncertified);
+      return;
     }
     finish(how, std::move(note), std::move(plan), best, true);
   } catch (const InputError& e) {
@@ -176,11 +194,11 @@ void ReorientationController::Impl::run(ReorientationRequest request) {
 }
 
 ReorientationController::ReorientationController(const std::string& cell_file,
-                                                 const TrackingSettings& tracking)
-    : ReorientationController(loadCell(cell_file), tracking) {}
+                                                 const FeedbackSettings& feedback)
+    : ReorientationController(loadCell(cell_file), feedback) {}
 
-ReorientationController::ReorientationController(Cell cell, const TrackingSettings& tracking)
-    : impl_(std::make_unique<Impl>(std::move(cell), tracking)) {}
+ReorientationController::ReorientationController(Cell cell, const FeedbackSettings& feedback)
+    : impl_(std::make_unique<Impl>(std::move(cell), feedback)) {}
 
 ReorientationController::~ReorientationController() {
   cancel();
@@ -225,27 +243,29 @@ bool ReorientationController::sample(double t, ReferenceSample& out,
   const detail::SnapshotSlots<PublishedPlan>::Reader reader(impl_->slots);
   const PublishedPlan* p = reader.get();
   if (p == nullptr) return false;
-  p->reference.sample(t, out);
+  p->schedule.reference(std::min(t, p->duration), out);
   if (plan_id != nullptr) *plan_id = p->id;
   return true;
 }
 
-bool ReorientationController::computeTorque(double t, const VecQ& q, const VecQ& v, VecU& tau,
-                                            ReferenceSample& ref,
-                                            std::uint64_t* plan_id) const noexcept {
+bool ReorientationController::track(double t, const VecU& joints, VecU& tau,
+                                    std::uint64_t* plan_id) noexcept {
   const detail::SnapshotSlots<PublishedPlan>::Reader reader(impl_->slots);
   const PublishedPlan* p = reader.get();
   if (p == nullptr) return false;
-  p->reference.sample(t, ref);
-  // The feed-forward of the control period [t, t + h): its midpoint's, so that a segment
-  // starting at t is never missed by rounding of t (as planner::replayPlan does).
-  ReferenceSample mid;  // fixed-capacity vectors: no allocation
-  p->reference.sample(t + 0.5 * p->time_step, mid);
-  ref.tau = mid.tau;
-  ref.phase = mid.phase;
-  p->tracking.compute(q, v, ref, tau);
+  if (joints.size() != impl_->model.controlDim()) return false;
+  impl_->start(*p);
+  p->law.compute(t, joints, tau);
   if (plan_id != nullptr) *plan_id = p->id;
   return true;
+}
+
+void ReorientationController::addPartPose(double stamp, const Pose& pose) noexcept {
+  const detail::SnapshotSlots<PublishedPlan>::Reader reader(impl_->slots);
+  const PublishedPlan* p = reader.get();
+  if (p == nullptr) return;
+  impl_->start(*p);
+  p->law.addPartPose(stamp, pose);
 }
 
 bool ReorientationController::publishedPlan(double& duration, VecQ& q0) const noexcept {

@@ -15,16 +15,18 @@ namespace {
 /// Part samples that may wait for the next compute(): a sensor faster than the loop
 /// delivers a few per period at most.
 constexpr int kPendingCapacity = 16;
+/// Sweeps of the contact QP's dual coordinate ascent.
+constexpr int kQpSweeps = 60;
 
 }  // namespace
 
-ControlLaw::ControlLaw(const FeedbackSchedule& schedule, double history_time)
+ControlLaw::ControlLaw(const FeedbackSchedule& schedule)
     : schedule_(schedule),
       ws_(std::make_unique<SimulatorWorkspace>(schedule.model().numFingers())),
       state_(VecQ::Zero(schedule.model().configDim()), VecQ::Zero(schedule.model().configDim())) {
   const double h = schedule.timeStep();
-  if (!(std::isfinite(history_time) && history_time >= 0.0))
-    throw InputError("control law: history_time must be finite and non-negative");
+  const PartPoseSensing& camera = schedule.sensing().part_pose;
+  const double history_time = camera.present ? camera.latency + 2.0 / camera.rate : 0.0;
   const int n = schedule.model().configDim(), nu = schedule.model().controlDim();
   ring_.resize(static_cast<std::size_t>(std::ceil(history_time / h)) + 2);
   pending_.resize(kPendingCapacity);
@@ -32,6 +34,21 @@ ControlLaw::ControlLaw(const FeedbackSchedule& schedule, double history_time)
   demand_ = VecU::Zero(nu);
   e_ = VecX::Zero(2 * n);
   d_ = VecX::Zero(2 * n);
+  ej_ = dej_ = alpha_ = beta_ = VecU::Zero(nu);
+  input_scale_.resize(nu);
+  const Cell& c = schedule.model().cell();
+  for (int j = 0; j < nu; ++j)
+    input_scale_[j] = schedule.settings().input_fraction *
+                      (j == layout::kTauTheta ? c.base.torque_limit : c.fingers[j - 1].force_limit);
+  for (int j = 0; j < nu; ++j) {
+    const double noise = std::max(j == layout::kTauTheta ? schedule.sensing().joints.angle_noise
+                                                         : schedule.sensing().joints.stroke_noise,
+                                  1e-12);
+    const double lambda = schedule.settings().joint_acceleration * h * h / noise;
+    const double r = (4.0 + lambda - std::sqrt(8.0 * lambda + lambda * lambda)) / 4.0;
+    alpha_[j] = 1.0 - r * r;
+    beta_[j] = 2.0 * (2.0 - alpha_[j]) - 4.0 * std::sqrt(1.0 - alpha_[j]);
+  }
   at_.q = VecQ::Zero(n);
   at_.v = VecQ::Zero(n);
   at_.tau = VecU::Zero(nu);
@@ -94,15 +111,41 @@ void ControlLaw::applyPartSample(const PartSample& s) {
   state_.v += d_.tail(n);
   // Sticking contacts re-anchor where the corrected estimate puts them: the simulator's
   // drift correction would otherwise pull the part back to the old anchor.
+  closeGaps(state_.q, state_.mode);
   state_.anchored.fill(false);
+  keepContactVelocities();
 }
 
-void ControlLaw::settleOnFingers(VecQ& q) {
-  // Gauss-Newton on the gaps of the contacts the plan starts on: the least part motion that
-  // closes them (G1's part rows), twice.
+void ControlLaw::keepContactVelocities() {
   const RbsfModel& model = schedule_.model();
   const int m = model.numFingers();
-  const ContactModes& modes = schedule_.modes(0);
+  ModelData& data = ws_->data;
+  data.xi_hint = state_.xi_hint;
+  model.updateContacts(state_.q, data);
+  MatQR W(model.configDim(), 0);
+  for (int i = 0; i < m; ++i) {
+    if (state_.mode[i] == ContactMode::kSeparated) continue;
+    W.conservativeResize(Eigen::NoChange, W.cols() + 1);
+    W.col(W.cols() - 1) = data.G1.col(i);
+    if (state_.mode[i] != ContactMode::kStick) continue;
+    W.conservativeResize(Eigen::NoChange, W.cols() + 1);
+    W.col(W.cols() - 1) = data.T.col(i);
+  }
+  if (W.cols() == 0) return;
+  MatQR MinvW = W;
+  model.applyMassInverse(state_.q, MinvW);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows> D =
+      W.transpose() * MinvW;
+  D.diagonal().array() += 1e-9 * D.diagonal().maxCoeff();
+  const VecR lambda = D.ldlt().solve(-(W.transpose() * state_.v));
+  state_.v.noalias() += MinvW * lambda;
+}
+
+void ControlLaw::closeGaps(VecQ& q, const ContactModes& modes) {
+  // Gauss-Newton on the gaps of the touching contacts: the least part motion that closes
+  // them (G1's part rows), twice.
+  const RbsfModel& model = schedule_.model();
+  const int m = model.numFingers();
   ModelData& data = ws_->data;
   for (int iteration = 0; iteration < 2; ++iteration) {
     data.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
@@ -117,29 +160,69 @@ void ControlLaw::settleOnFingers(VecQ& q) {
       gap[gap.size() - 1] = data.contacts[i].gap;
     }
     if (G.cols() == 0) return;
-    const MatCC D = G.transpose() * G;
+    // Damped: where the contacts leave a motion free to first order (normals through one
+    // point: a rotation about it), no correction is asked of it.
+    MatCC D = G.transpose() * G;
+    D.diagonal().array() += 1e-6 * D.diagonal().maxCoeff();
     const VecC w = D.ldlt().solve(gap);
     q.head<3>() -= G * w;
   }
 }
 
+bool ControlLaw::computeJointOnly(double t, const VecU& joints, VecU& tau) {
+  const double h = schedule_.timeStep();
+  const int n = schedule_.model().configDim(), nu = schedule_.model().controlDim();
+  schedule_.reference(t, at_);
+  if (step_ >= 0) {
+    const long advance = std::max(1L, std::lround((t - entry(step_).t) / h));
+    ej_ += static_cast<double>(advance) * h * dej_;
+    step_ += advance;
+  } else {
+    step_ = 0;
+    for (int j = 0; j < nu; ++j) ej_[j] = joints[j] - at_.q[layout::inputToConfig(j)];
+    dej_ = -at_.v.segment(layout::kTheta, nu);  // the cell starts at rest
+  }
+  entry(step_).t = t;
+  entry(step_).knot = schedule_.knotAt(t);
+  e_.setZero(2 * n);
+  for (int j = 0; j < nu; ++j) {
+    const int k = layout::inputToConfig(j);
+    const double r = joints[j] - at_.q[k] - ej_[j];
+    ej_[j] += alpha_[j] * r;
+    dej_[j] += beta_[j] / h * r;
+    e_[k] = ej_[j];
+    e_[n + k] = dej_[j];
+  }
+  state_.q = at_.q + e_.head(n);
+  state_.v = at_.v + e_.tail(n);
+  num_pending_ = 0;
+  const bool clamped = control(t, entry(step_).knot, e_, Eigen::Vector3d::Zero(), tau);
+  applied_ = tau;
+  return clamped;
+}
+
 bool ControlLaw::compute(double t, const VecU& joints, VecU& tau) {
   const double h = schedule_.timeStep();
   const int n = schedule_.model().configDim();
+  if (!schedule_.partFeedback()) {
+    if (step_ >= 0 && t < entry(step_).t - 0.5 * h) reset();
+    return computeJointOnly(t, joints, tau);
+  }
+  if (step_ >= 0 && t < entry(step_).t - 0.5 * h) reset();  // time went back: a new run
   if (step_ < 0) {
     // Start at rest: the part where the plan starts it, the joints where they are measured
     // (an estimate started elsewhere would read the first joint residual as a velocity).
     schedule_.reference(t, at_);
     VecQ q = at_.q;
     for (int j = 0; j < joints.size(); ++j) q[layout::inputToConfig(j)] = joints[j];
-    settleOnFingers(q);
+    closeGaps(q, schedule_.modes(0));
     state_ = SimState(q, VecQ::Zero(n));
     state_.t = t;
     step_ = 0;
   } else {
     const long advance = std::max(1L, std::lround((t - entry(step_).t) / h));
     for (long a = 0; a < advance; ++a) {
-      schedule_.simulator().step(state_, applied_, *ws_);
+      schedule_.estimatorSimulator().step(state_, applied_, *ws_);
       Entry& next = entry(++step_);
       next.t = entry(step_ - 1).t + h;
       next.knot = schedule_.knotAt(next.t);
@@ -186,6 +269,11 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
   demand_ = mid_.tau;
   demand_.noalias() -= schedule_.gain(knot) * e;
   demand_.noalias() -= schedule_.integralGain(knot) * xi;
+  if (schedule_.contactRows(knot).rows() > 0) {
+    VecU du = demand_ - mid_.tau;
+    keepContacts(knot, e, du);
+    demand_ = mid_.tau + du;
+  }
   const Cell& c = schedule_.model().cell();
   tau.resize(nu);
   bool clamped = false;
@@ -196,6 +284,32 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
     clamped = clamped || tau[j] != demand_[j];
   }
   return clamped;
+}
+
+void ControlLaw::keepContacts(int knot, const VecX& e, VecU& du) {
+  const Eigen::MatrixXd& G = schedule_.contactRows(knot);
+  const int rows = static_cast<int>(G.rows());
+  // r = bound - G du: what each row still lacks (<= 0: met).
+  qp_r_ = schedule_.contactBound(knot);
+  qp_r_.noalias() -= schedule_.contactStateGain(knot) * e;
+  qp_r_.noalias() -= G * du;
+  if (qp_r_.maxCoeff() <= 1e-9) return;
+  // In scaled inputs y = R^1/2 (du' - du): min |y|^2 s.t. (G R^-1/2) y >= r.
+  qp_g_ = G * input_scale_.asDiagonal();
+  qp_p_.noalias() = qp_g_ * qp_g_.transpose();
+  qp_l_.setZero(rows);
+  for (int sweep = 0; sweep < kQpSweeps; ++sweep) {
+    double change = 0.0;
+    for (int i = 0; i < rows; ++i) {
+      if (!(qp_p_(i, i) > 0.0)) continue;
+      const double w = qp_l_[i] + (qp_r_[i] - qp_p_.row(i).dot(qp_l_)) / qp_p_(i, i);
+      const double next = std::max(0.0, w);
+      change = std::max(change, std::abs(next - qp_l_[i]) * qp_p_(i, i));
+      qp_l_[i] = next;
+    }
+    if (change <= 1e-9) break;
+  }
+  du.noalias() += input_scale_.asDiagonal() * (qp_g_.transpose() * qp_l_);
 }
 
 void ControlLaw::recordApplied(const VecU& tau) { applied_ = tau; }

@@ -111,6 +111,8 @@ ModeLinearization ModeDynamics::linearize(const VecQ& q, const VecQ& v, const Ve
 
   lin.A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   lin.A.block(0, n, n, n).setIdentity();
+  lin.Lx = Eigen::MatrixXd::Zero(lin.lambda.size(), 2 * n);
+  Eigen::VectorXd lambda_plus, lambda_minus;
   VecQ plus, minus;
   for (int j = 0; j < 2 * n; ++j) {
     VecQ qp = q, qm = q, vp = v, vm = v;
@@ -120,10 +122,11 @@ ModeLinearization ModeDynamics::linearize(const VecQ& q, const VecQ& v, const Ve
       vp[j - n] += fd_step, vm[j - n] -= fd_step;
     }
     data.xi_hint = hint;
-    acceleration(qp, vp, tau, modes, data, plus);
+    acceleration(qp, vp, tau, modes, data, plus, &lambda_plus);
     data.xi_hint = hint;
-    acceleration(qm, vm, tau, modes, data, minus);
+    acceleration(qm, vm, tau, modes, data, minus, &lambda_minus);
     lin.A.block(n, j, n, 1) = (plus - minus) / (2.0 * fd_step);
+    if (lin.Lx.rows() > 0) lin.Lx.col(j) = (lambda_plus - lambda_minus) / (2.0 * fd_step);
   }
 
   // B and F exactly: v' = M^-1 (u - Q) + M^-1 N lambda with lambda affine in u.
@@ -154,7 +157,12 @@ ModeLinearization ModeDynamics::linearize(const VecQ& q, const VecQ& v, const Ve
     Eigen::MatrixXd D = W.transpose() * N;
     const double eps = regularization_ * std::max(D.diagonal().cwiseAbs().maxCoeff(), 1e-300);
     D.diagonal().array() += eps;
-    dvdf -= Eigen::MatrixXd(N) * D.partialPivLu().solve(W.transpose() * Minv);
+    const Eigen::MatrixXd dlambda_df = -D.partialPivLu().solve(W.transpose() * Minv);
+    dvdf += Eigen::MatrixXd(N) * dlambda_df;
+    lin.Lu.resize(k, nu);
+    for (int j = 0; j < nu; ++j) lin.Lu.col(j) = dlambda_df.col(layout::inputToConfig(j));
+  } else {
+    lin.Lu.resize(0, nu);
   }
   lin.F = Eigen::MatrixXd::Zero(2 * n, n);
   lin.F.bottomRows(n) = dvdf;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <mutex>
 #include <thread>
+#include <tuple>
 
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/planner/plan_reference.h"
@@ -58,6 +59,25 @@ std::string verdictText(const Certificate& c) {
   if (c.worst.index >= 0 && !c.worst.success)
     text += "; worst trial " + std::to_string(c.worst.index) + ": " + c.worst.failure;
   return text;
+}
+
+std::string worstTrialText(const Certificate& c) {
+  const TrialOutcome& w = c.worst;
+  if (w.index < 0) return "no trial";
+  char buf[512];
+  int n = std::snprintf(buf, sizeof buf, "trial %d: ", w.index);
+  if (w.dropped)
+    n += std::snprintf(buf + n, sizeof buf - n, "part dropped at t = %.3f s, ", w.dropped_time);
+  n += std::snprintf(buf + n, sizeof buf - n,
+                     "ends %.3g m and %.3g deg from the goal, moving %.3g m/s and %.3g deg/s",
+                     w.position_error, w.angle_error * 180 / M_PI, w.speed,
+                     w.angular_speed * 180 / M_PI);
+  if (w.departure_time >= 0.0)
+    n += std::snprintf(buf + n, sizeof buf - n,
+                       "; left the planned path at t = %.3f s (planned phase %s)", w.departure_time,
+                       w.departure_phase.c_str());
+  std::snprintf(buf + n, sizeof buf - n, "; phases %s", w.phases.c_str());
+  return buf;
 }
 
 Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateSettings& s,

@@ -1,5 +1,6 @@
 #include "rbsf/planner/plan.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "certificate_json.h"
 #include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/rollout.h"
@@ -14,6 +16,12 @@
 namespace rbsf::planner {
 
 using nlohmann::json;
+
+namespace {
+
+char phaseLetter(Phase p) { return p == Phase::kC ? 'C' : p == Phase::kP ? 'P' : 'U'; }
+
+}  // namespace
 
 double Plan::duration() const {
   double d = 0.0;
@@ -27,6 +35,26 @@ std::string Plan::phaseSequence() const {
     const char c = std::string(toString(s.phase))[0];
     if (seq.empty() || seq.back() != c) seq.push_back(c);
   }
+  return seq;
+}
+
+std::string filterPhaseRuns(const std::vector<std::pair<Phase, double>>& runs, double min_run) {
+  // Merge equal neighbours first: a phase split over two segments is one run.
+  std::vector<std::pair<char, double>> merged;
+  for (const auto& [phase, d] : runs) {
+    const char c = phaseLetter(phase);
+    if (!merged.empty() && merged.back().first == c)
+      merged.back().second += d;
+    else
+      merged.emplace_back(c, d);
+  }
+  std::string seq;
+  for (const auto& [c, d] : merged)
+    if (d >= min_run && (seq.empty() || seq.back() != c)) seq.push_back(c);
+  if (seq.empty() && !merged.empty())
+    seq.push_back(std::max_element(merged.begin(), merged.end(), [](auto& a, auto& b) {
+                    return a.second < b.second;
+                  })->first);
   return seq;
 }
 
@@ -98,18 +126,6 @@ json vec(const auto& v) {
 }
 
 json poseJson(const Pose& p) { return {{"x", p.x}, {"y", p.y}, {"phi", p.phi}}; }
-
-json replayJson(const ReplayResult& r) {
-  json j = {{"position_error", r.position_error},
-            {"angle_error", r.angle_error},
-            {"min_f_n", r.min_f_n},
-            {"phases", r.phases}};
-  if (r.departure_time >= 0.0) {
-    j["departure_time"] = r.departure_time;
-    j["departure_phase"] = r.departure_phase;
-  }
-  return j;
-}
 
 void requireFiniteJson(const json& j) {
   if (j.is_number_float() && !std::isfinite(j.get<double>()))
@@ -185,19 +201,12 @@ std::string planJsonText(const Plan& plan, const PlanFileOptions& options) {
                          {"cost_before", o.cost_before},
                          {"cost_after", o.cost_after}};
     if (options.wall_clock) j["optimization"]["solve_time"] = o.solve_time;
+    j["optimization"]["chosen"] = o.chosen;
+    if (o.refined_success_rate >= 0.0)
+      j["optimization"]["refined_success_rate"] = o.refined_success_rate;
     if (!o.message.empty()) j["optimization"]["message"] = o.message;
   }
-  auto summaryJson = [](const ReplaySummary& r) {
-    json closed = replayJson(r.closed_loop);
-    closed["max_tracking_error"] = r.closed_loop.max_tracking_error;
-    return json{{"closed_loop", closed}, {"open_loop", replayJson(r.open_loop)}};
-  };
-  if (plan.replay.ran) j["replay"] = summaryJson(plan.replay);
-  if (plan.replay.ran || plan.optimization.ran) j["accepted"] = plan.replay.accepted;
-  if (plan.planner_replay.ran) {
-    j["planner_replay"] = summaryJson(plan.planner_replay);
-    j["planner_replay"]["accepted"] = plan.planner_replay.accepted;
-  }
+  if (plan.certificate.ran) j["certificate"] = certificateJson(plan.certificate);
   requireFiniteJson(j);
   return j.dump(1) + "\n";
 }
@@ -352,44 +361,13 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
       if (o.contains("solve_time")) s.solve_time = num(o, "solve_time", "optimization");
       s.cost_before = num(o, "cost_before", "optimization");
       s.cost_after = num(o, "cost_after", "optimization");
+      s.chosen = boolean(o, "chosen", "optimization");
+      if (o.contains("refined_success_rate"))
+        s.refined_success_rate = num(o, "refined_success_rate", "optimization");
       if (o.contains("message")) s.message = text(o, "message", "optimization");
     }
-    auto summary = [&](const char* name) {
-      const json& r = j.at(name);
-      auto result = [&](const char* key) {
-        const std::string where = std::string(name) + "." + key;
-        const json& o = need(r, key, name);
-        ReplayResult x;
-        x.position_error = num(o, "position_error", where);
-        x.angle_error = num(o, "angle_error", where);
-        x.min_f_n = num(o, "min_f_n", where);
-        x.phases = text(o, "phases", where);
-        if (o.contains("departure_time")) {
-          x.departure_time = num(o, "departure_time", where);
-          x.departure_phase = text(o, "departure_phase", where);
-          if (!(x.departure_time >= 0.0) ||
-              (x.departure_phase != "C" && x.departure_phase != "P" && x.departure_phase != "U"))
-            throw InputError(path + ": " + where +
-                             ".departure_time must be >= 0 and departure_phase C, P or U");
-        }
-        return x;
-      };
-      ReplaySummary out;
-      out.ran = true;
-      out.closed_loop = result("closed_loop");
-      out.closed_loop.max_tracking_error =
-          num(r.at("closed_loop"), "max_tracking_error", std::string(name) + ".closed_loop");
-      out.open_loop = result("open_loop");
-      return out;
-    };
-    if (j.contains("replay")) plan.replay = summary("replay");
-    if (j.contains("planner_replay")) {
-      plan.planner_replay = summary("planner_replay");
-      plan.planner_replay.accepted = boolean(j.at("planner_replay"), "accepted", "planner_replay");
-    }
-    if (plan.replay.ran || plan.optimization.ran) {
-      plan.replay.accepted = boolean(j, "accepted", "");
-    }
+    if (j.contains("certificate"))
+      plan.certificate = readCertificateJson(j.at("certificate"), path + ": certificate");
     return plan;
   } catch (const json::exception& e) {
     throw InputError(path + ": malformed plan: " + e.what());

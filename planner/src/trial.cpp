@@ -11,9 +11,9 @@
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/rollout.h"
+#include "rbsf/dynamics/sensor_model.h"
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/planner/goal.h"
-#include "rbsf/planner/plan_replay.h"
 
 namespace rbsf::planner {
 
@@ -96,35 +96,20 @@ TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const 
     throw InputError("the plan is for " + std::to_string(plan.q0.size() - 4) +
                      " fingers, the cell has " + std::to_string(m));
   const double h = plan.simulator.time_step;
-  const Sensing& sensing = schedule.sensing();
-  const PartPoseSensing& camera = sensing.part_pose;
   auto ws = std::make_unique<SimulatorWorkspace>(m);
   SimState state(draw.q0, VecQ::Zero(draw.q0.size()));
-  ControlLaw law(schedule, camera.latency + 2.0 / camera.rate + 2.0 * h);
-  std::mt19937_64 noise_rng(draw.noise_seed);
-  std::normal_distribution<double> normal(0.0, draw.noise ? 1.0 : 0.0);
+  ControlLaw law(schedule);
+  SensorModel sensors(schedule.sensing(), h, draw.noise_seed, draw.noise, draw.com_offset);
 
   const long steps = std::lround(schedule.holdEnd() / h);
-  const long every = std::max(1L, std::lround(1.0 / (camera.rate * h)));
-  const long latency = std::lround(camera.latency / h);
   const long rest_steps = std::max(1L, std::min(steps, std::lround(s.rest_window / h)));
-  const Vec2& d = draw.com_offset;
   auto framePose = [&](const VecQ& q) {
-    const Vec2 p = Vec2(q[layout::kX], q[layout::kY]) - rotate(q[layout::kPhi], d);
-    return Eigen::Vector3d(p.x(), p.y(), q[layout::kPhi]);
+    const Pose p = sensors.framePose(q);
+    return Eigen::Vector3d(p.x, p.y, p.phi);
   };
   VecU limit(nu);
   limit[layout::kTauTheta] = plant.cell().base.torque_limit;
   for (int i = 0; i < m; ++i) limit[layout::fingerForce(i)] = plant.cell().fingers[i].force_limit;
-
-  // Camera samples waiting for their latency: (deliver at step, stamp, pose).
-  struct Shot {
-    long deliver;
-    double stamp;
-    Pose pose;
-  };
-  std::vector<Shot> shots;
-  shots.reserve(static_cast<std::size_t>(latency / every + 2));
 
   TrialOutcome r;
   ReferenceSample ref, mid;
@@ -145,22 +130,8 @@ TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const 
           break;
         }
     } else {
-      for (int j = 0; j < nu; ++j) {
-        const double sd =
-            j == layout::kTauTheta ? sensing.joints.angle_noise : sensing.joints.stroke_noise;
-        joints[j] = now.q[layout::inputToConfig(j)] + sd * normal(noise_rng);
-      }
-      if (camera.present && n % every == 0) {
-        const Eigen::Vector3d p = framePose(now.q);
-        shots.push_back({n + latency, t,
-                         Pose{p[0] + camera.position_noise * normal(noise_rng),
-                              p[1] + camera.position_noise * normal(noise_rng),
-                              p[2] + camera.angle_noise * normal(noise_rng)}});
-      }
-      std::size_t k = 0;
-      for (; k < shots.size() && shots[k].deliver <= n; ++k)
-        law.addPartPose(shots[k].stamp, shots[k].pose);
-      shots.erase(shots.begin(), shots.begin() + static_cast<long>(k));
+      sensors.joints(now.q, joints);
+      sensors.partPose(n, now.q, [&](double stamp, const Pose& p) { law.addPartPose(stamp, p); });
       if (law.compute(t, joints, tau)) ++saturated;
     }
     for (int j = 0; j < nu; ++j) tau[j] *= draw.actuator_gain[j];

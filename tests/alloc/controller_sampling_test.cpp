@@ -1,5 +1,5 @@
-// The controller facade's real-time path allocates nothing: sample() and computeTorque()
-// on a published plan, for times before, inside and after the plan.
+// The controller facade's real-time path allocates nothing: sample(), track() and
+// addPartPose() on a published plan, for times before, inside and after the plan.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +11,7 @@
 namespace rbsf {
 namespace {
 
-TEST(NoAllocationController, SampleAndComputeTorque) {
+TEST(NoAllocationController, SampleTrackAndPartPoses) {
   if (!test::mallocCountingAvailable()) GTEST_SKIP() << "malloc not countable in this build";
   controller::ReorientationController c(std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml");
   controller::ReorientationRequest request;
@@ -19,6 +19,8 @@ TEST(NoAllocationController, SampleAndComputeTorque) {
   request.problem.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
   request.planner.seed = 7;
   request.planner.time_limit = 120.0;
+  request.certificate.trials = 2;
+  request.accept_uncertified = true;
   ASSERT_TRUE(c.plan(request));
   c.wait();  // the worker is done: only this thread runs while counting
   ASSERT_EQ(c.status(), controller::ControllerStatus::kReady) << c.result().message;
@@ -26,19 +28,20 @@ TEST(NoAllocationController, SampleAndComputeTorque) {
   VecQ q0;
   ASSERT_TRUE(c.publishedPlan(duration, q0));
   ReferenceSample ref;
-  VecU tau;
-  c.computeTorque(0.0, q0, VecQ::Zero(q0.size()), tau, ref);  // size the outputs once
-  const VecQ v = VecQ::Constant(q0.size(), 0.01);
+  VecU tau, joints(c.model().controlDim());
+  for (int j = 0; j < joints.size(); ++j) joints[j] = q0[3 + j];
+  c.track(0.0, joints, tau);  // the law starts (its first call, as a loop's)
   std::uint64_t id = 0;
   int sampled = 0;
   test::MallocCounter counter;
-  for (int k = -100; k < 1100; ++k) {
-    const double t = 1e-3 * k * duration;  // -0.1 T .. 1.1 T
+  for (int k = 1; k < 1200; ++k) {
+    const double t = 1e-3 * k * duration;  // 0 .. 1.2 T
     sampled += c.sample(t, ref, &id);
-    sampled += c.computeTorque(t, ref.q, v, tau, ref, &id);
+    if (k % 10 == 0) c.addPartPose(t, Pose{ref.q[0], ref.q[1], ref.q[2]});
+    sampled += c.track(t, joints, tau, &id);
   }
   EXPECT_EQ(counter.count(), 0);
-  EXPECT_EQ(sampled, 2400);
+  EXPECT_EQ(sampled, 2398);
   EXPECT_EQ(id, 1u);
 }
 

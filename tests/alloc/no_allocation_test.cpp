@@ -7,11 +7,11 @@
 
 #include "../unit/test_support.h"
 #include "malloc_counter.h"
+#include "rbsf/dynamics/control_law.h"
 #include "rbsf/dynamics/forward_dynamics.h"
 #include "rbsf/dynamics/holding.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/dynamics/small_solvers.h"
-#include "rbsf/dynamics/tracking_controller.h"
 
 namespace rbsf {
 namespace {
@@ -99,7 +99,7 @@ TEST_F(NoAllocation, SimulatorStep) {
   }
 }
 
-TEST_F(NoAllocation, ReferenceSamplingAndTracking) {
+TEST_F(NoAllocation, ReferenceSamplingAndTheControlLaw) {
   const RbsfModel model(test::makeCell(test::ShapeKind::kEllipse, 3));
   const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.40, 0.0}, 0.0);
   ReferenceTrajectory ref;
@@ -111,20 +111,30 @@ TEST_F(NoAllocation, ReferenceSamplingAndTracking) {
   const VecU tau0 = VecU::Constant(4, 10.0), tau1 = VecU::Constant(4, 20.0);
   for (int j = 0; j < 10; ++j)
     ref.addInputPiece(0.1 * j, 0.1, tau0, j % 2 ? tau1 : VecU(), Phase::kC);
-  const TrackingController controller(model, q0);
-  ReferenceSample sample;
-  VecU tau;
-  ref.sample(0.0, sample);
-  controller.compute(q0, v, sample, tau);
-  double sum = 0.0;
-  test::MallocCounter counter;
-  for (int k = -10; k < 1100; ++k) {  // also outside the plan (clamped)
-    ref.sample(1e-3 * k, sample);
-    controller.compute(q0, v, sample, tau);
-    sum += tau[0] + TrackingController::jointError(q0, sample);
+  for (const bool part : {true, false}) {
+    Sensing sensing;
+    sensing.part_pose.present = part;
+    FeedbackSettings fs;
+    fs.settle_time = 0.2;
+    const FeedbackSchedule schedule(model, ref, sensing, SimulatorSettings{}, fs);
+    ControlLaw law(schedule);
+    ReferenceSample sample;
+    VecU tau, joints(4);
+    ref.sample(0.0, sample);
+    double sum = 0.0;
+    test::MallocCounter counter;
+    for (int k = 0; k < 1300; ++k) {  // beyond the plan: the hold
+      const double t = 1e-3 * k;
+      schedule.reference(t, sample);
+      for (int j = 0; j < 4; ++j) joints[j] = sample.q[layout::inputToConfig(j)] + 1e-5 * j;
+      if (k % 10 == 0 && k >= 10)
+        law.addPartPose(t - 0.01, Pose{sample.q[layout::kX], sample.q[layout::kY], 0.001});
+      law.compute(t, joints, tau);
+      sum += tau[0];
+    }
+    EXPECT_EQ(counter.count(), 0) << (part ? "part feedback" : "joint PD");
+    EXPECT_TRUE(std::isfinite(sum));
   }
-  EXPECT_EQ(counter.count(), 0);
-  EXPECT_TRUE(std::isfinite(sum));
 }
 
 }  // namespace

@@ -296,11 +296,29 @@ TEST(PlanReorientation, SolvesASmallProblemAndWritesJsonAndCsv) {
   const std::string out = writeTemp("plan.json", ""), csv = writeTemp("plan.csv", "");
   const Result r = run(kPlan + " --cell " + kCells +
                        "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 7"
-                       " --time-limit 120 --quiet --no-optimize --out " +
+                       " --time-limit 120 --quiet --no-optimize --trials 4 --out " +
                        out + " --csv " + csv);
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_TRUE(r.err.empty()) << r.err;  // --quiet, and not a terminal anyway
+  // 0: the plan written is certified; 4: it is not, and stderr says so (nothing else).
+  ASSERT_TRUE(r.status == 0 || r.status == 4) << r.status << "\n" << r.err;
   const auto j = nlohmann::json::parse(slurp(out));
+  ASSERT_TRUE(j.contains("certificate"));
+  const auto& c = j["certificate"];
+  EXPECT_EQ(c["certified"].get<bool>(), r.status == 0);
+  EXPECT_EQ(c["trials"], 4);
+  EXPECT_EQ(c["seed"], 1);
+  EXPECT_EQ(c["law"], "part feedback");
+  EXPECT_EQ(c["successes"].get<int>() * 0.25, c["success_rate"].get<double>());
+  for (const char* key : {"criteria", "sensing", "uncertainty", "worst"})
+    EXPECT_TRUE(c.contains(key)) << key;
+  for (const char* key : {"trial", "success", "failure", "position_error", "angle_error", "speed",
+                          "angular_speed", "dropped", "saturated_time", "phases"})
+    EXPECT_TRUE(c["worst"].contains(key)) << key;
+  if (r.status == 0)
+    EXPECT_TRUE(r.err.empty()) << r.err;  // --quiet, and not a terminal anyway
+  else
+    EXPECT_NE(r.err.find("NOT certified"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("certificate (part feedback, 4 trials, seed 1)"), std::string::npos)
+      << r.out;
   EXPECT_EQ(j["status"], "exact");
   EXPECT_TRUE(j["planning_time"].is_number());
   EXPECT_TRUE(j["propagations"].is_number_integer());
@@ -315,8 +333,7 @@ TEST(PlanReorientation, SolvesASmallProblemAndWritesJsonAndCsv) {
   for (const char* key : {"t", "q", "v", "tau", "f_n", "phase"})
     EXPECT_TRUE(j["samples"][0].contains(key)) << key;
   EXPECT_EQ(j["samples"][0]["f_n"].size(), 3u);
-  for (const char* key : {"optimization", "replay", "accepted"})  // --no-optimize
-    EXPECT_FALSE(j.contains(key)) << key;
+  EXPECT_FALSE(j.contains("optimization"));  // --no-optimize
   const std::string text = slurp(csv);
   // rbsf-simulate's columns (one CSV format for trajectories), one row per sample, and
   // the rows agree with the JSON samples to the last bit.
@@ -345,15 +362,16 @@ bool allFinite(const nlohmann::json& j) {
   return true;
 }
 
-TEST(PlanReorientation, OptimisesByDefaultAndReportsTheReplay) {
+TEST(PlanReorientation, OptimisesByDefaultAndWritesTheBetterCertifiedPlan) {
   const std::string out = writeTemp("opt_plan.json", "");
   const Result r = run(kPlan + " --cell " + kCells +
                        "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 5"
-                       " --time-limit 120 --knots 30 --optimize-time-limit 120 --quiet --out " +
+                       " --time-limit 120 --knots 30 --optimize-time-limit 120 --trials 4 "
+                       "--quiet --out " +
                        out);
   // 30 knots: the optimiser converges in a few seconds on this plan (seed 5, phases CPU;
-  // 100 knots take over 30 s on the shared CI machine). 0: optimised and accepted; 4: the planner's
-  // plan kept, marked, the reason on stderr.
+  // 100 knots take over 30 s on the shared CI machine). 0: the plan written is certified;
+  // 4: it is not, the verdict on stderr.
   ASSERT_TRUE(r.status == 0 || r.status == 4) << r.status << "\n" << r.err;
   const auto j = nlohmann::json::parse(slurp(out));
   EXPECT_TRUE(allFinite(j));
@@ -362,38 +380,27 @@ TEST(PlanReorientation, OptimisesByDefaultAndReportsTheReplay) {
   EXPECT_TRUE(o["status"].is_string());
   for (const char* key : {"iterations", "solve_time", "cost_before", "cost_after"})
     EXPECT_TRUE(o[key].is_number()) << key;
-  ASSERT_TRUE(j["accepted"].is_boolean());
-  EXPECT_EQ(j["accepted"].get<bool>(), r.status == 0);
+  ASSERT_TRUE(o["chosen"].is_boolean());
+  ASSERT_TRUE(j.contains("certificate"));
+  const auto& c = j["certificate"];
+  EXPECT_EQ(c["certified"].get<bool>(), r.status == 0);
   const std::string status = o["status"];
   if (status == "Solve_Succeeded" || status == "Solved_To_Acceptable_Level") {
-    ASSERT_TRUE(j.contains("replay")) << "a converged plan is always replayed";
-    for (const char* loop : {"closed_loop", "open_loop"}) {
-      const auto& x = j["replay"][loop];
-      for (const char* key : {"position_error", "angle_error", "min_f_n"})
-        EXPECT_TRUE(x[key].is_number()) << loop << "." << key;
-      EXPECT_TRUE(x["phases"].is_string()) << loop;
-    }
-    EXPECT_TRUE(j["replay"]["closed_loop"]["max_tracking_error"].is_number());
+    // A converged plan is always certified, and the plan written has the better rate.
+    ASSERT_TRUE(o.contains("refined_success_rate"));
+    EXPECT_GE(c["success_rate"].get<double>(), o["refined_success_rate"].get<double>());
   }
-  if (r.status == 0) {
-    EXPECT_TRUE(r.err.empty()) << r.err;
-    EXPECT_TRUE(j["segments"][0].contains("tau_end")) << "accepted: the refined plan";
+  const bool chosen = o["chosen"].get<bool>();
+  EXPECT_EQ(j["segments"][0].contains("tau_end"), chosen) << "ramps only in a refined plan";
+  if (chosen) {
+    EXPECT_EQ(c["success_rate"].get<double>(), o["refined_success_rate"].get<double>());
   } else {
-    EXPECT_NE(r.err.find("planner's plan kept"), std::string::npos) << r.err;
     EXPECT_FALSE(o["message"].get<std::string>().empty());
-    EXPECT_FALSE(j["segments"][0].contains("tau_end")) << "rejected: the planner's plan";
-    // The plan in the file is verified too. Open loop it repeats the planner's own
-    // simulation, so it ends where the planner's search ended, within the goal tolerance,
-    // through the phases its segments are labelled with.
-    ASSERT_TRUE(j.contains("planner_replay"));
-    const auto& k = j["planner_replay"];
-    EXPECT_LE(k["open_loop"]["position_error"].get<double>(), 0.01);
-    EXPECT_LE(k["open_loop"]["angle_error"].get<double>(), 2.0 * M_PI / 180.0);
-    // Its segments last 20 ms or more, so no run is dropped: the replay shows them all.
-    EXPECT_EQ(k["open_loop"]["phases"], j["phase_sequence"]);
-    EXPECT_TRUE(k["accepted"].is_boolean());
-    EXPECT_NE(r.out.find("planner's plan, replay closed loop"), std::string::npos) << r.out;
   }
+  EXPECT_NE(r.out.find("planner's plan: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(chosen ? "written: the optimised plan" : "written: the planner's plan"),
+            std::string::npos)
+      << r.out;
 }
 
 TEST(PlanReorientation, OptimizeToleranceReachesIpopt) {
@@ -413,62 +420,26 @@ TEST(PlanReorientation, OptimizeToleranceReachesIpopt) {
   EXPECT_LT(iterations("--optimize-tolerance 1e-2"), iterations(""));
 }
 
-TEST(PlanReorientation, DecisiveModesMakeTheNinetyDegreePlanRepeatableUnderTracking) {
-  // A 20-iteration optimisation does not converge, so the file keeps the planner's plan
-  // and its own closed-loop replay (planner_replay). With the decisive-modes rule that plan
-  // passes; --no-decisive-modes plans the same seed the old way, and the cell's tracking
-  // drops the part.
-  auto plan = [&](const std::string& extra) {
-    const std::string out = writeTemp("plan90" + extra + ".json", "");
-    const Result r = run(kPlan + " --cell " + kCells +
-                         "default.yaml --start 0.1,0.40,0 --goal=-0.1,0.40,-90deg --seed 2"
-                         " --time-limit 120 --quiet --knots 30 --optimize-iterations 20 --out " +
-                         out + " " + extra);
-    EXPECT_EQ(r.status, 4) << r.err;
-    return nlohmann::json::parse(slurp(out));
-  };
-  const auto decisive = plan("");
-  ASSERT_TRUE(decisive.contains("planner_replay"));
-  EXPECT_TRUE(decisive["planner_replay"]["accepted"].get<bool>());
-  EXPECT_LE(decisive["planner_replay"]["closed_loop"]["position_error"].get<double>(), 0.01);
-  const auto lenient = plan("--no-decisive-modes");
-  ASSERT_TRUE(lenient.contains("planner_replay"));
-  EXPECT_FALSE(lenient["planner_replay"]["accepted"].get<bool>());
-}
-
-TEST(PlanReorientation, DefaultNinetyDegreeProblemIsRefinedOnTheRetryAndAccepted) {
-  // The default 90 deg problem (seed 1). On the 2-core VM of the measurements the first
-  // refinement drifts 3 deg in a U run and the retry with a minimum slip rate is accepted
-  // (1.6 mm / 0.83 deg), so the file holds the refined plan and the exit status is 0. The
-  // refinements are chaotic in the last bits of the linear algebra (BENCHMARKS.md), so on
-  // other hardware either solve may come out otherwise; what must hold on any machine: an
-  // accepted plan is within the tolerances of its replay, and a rejected first solve is
-  // retried, the message naming both.
+TEST(PlanReorientation, NotCertifiedFirstSolveIsRetriedAndEachSolveIsNamed) {
+  // The default 90 deg problem (seed 1): the first refinement is not certified, so the
+  // optimiser runs again with a minimum slip rate; whichever plan is written, every solve
+  // not chosen is named in the message with its certificate or its failure.
   const std::string out = writeTemp("plan90_refined.json", "");
   const Result r = run(kPlan + " --cell " + kCells +
                        "default.yaml --start 0.1,0.40,0 --goal=-0.1,0.40,-90deg --seed 1"
-                       " --time-limit 120 --quiet --out " +
+                       " --time-limit 120 --trials 4 --quiet --out " +
                        out);
   ASSERT_TRUE(r.status == 0 || r.status == 4) << r.err;
   const auto plan = nlohmann::json::parse(slurp(out));
-  const bool accepted = plan["accepted"].get<bool>();
-  EXPECT_EQ(accepted, r.status == 0);
+  const auto& c = plan["certificate"];
+  EXPECT_EQ(c["certified"].get<bool>(), r.status == 0);
   const auto& o = plan["optimization"];
   const std::string message = o.contains("message") ? o["message"].get<std::string>() : "";
-  if (accepted) {
-    if (!message.empty()) {
-      EXPECT_NE(message.find("retry with min_slip_rate = 0.1 accepted"), std::string::npos)
-          << message;
+  if (!c["certified"].get<bool>()) {
+    EXPECT_NE(message.find("retry with min_slip_rate"), std::string::npos) << message;
+    if (!o["chosen"].get<bool>()) {
+      EXPECT_NE(message.find("first solve"), std::string::npos) << message;
     }
-    EXPECT_EQ(o["status"].get<std::string>(), "Solve_Succeeded");
-    EXPECT_LT(o["cost_after"].get<double>(), o["cost_before"].get<double>());
-    const auto& cl = plan["replay"]["closed_loop"];
-    EXPECT_LE(cl["position_error"].get<double>(), 0.01);
-    EXPECT_LE(cl["angle_error"].get<double>(), 2.0 * M_PI / 180.0);
-    EXPECT_GE(cl["min_f_n"].get<double>(), 0.0);
-  } else {
-    EXPECT_NE(message.find("; retry with min_slip_rate = 0.1: "), std::string::npos) << message;
-    EXPECT_NE(r.err.find("retry with min_slip_rate"), std::string::npos) << r.err;
   }
 }
 
@@ -489,8 +460,9 @@ TEST(PlanReorientation, AbsoluteGoalAngleIsATotalTurn) {
   const std::string base = kPlan + " --cell " + kCells +
                            "default.yaml --quiet --no-optimize --start 0.1,0.40,0 "
                            "--goal 0.1,0.40,345deg --seed 7 ";
-  const Result nearest = run(base + "--time-limit 60");
-  EXPECT_EQ(nearest.status, 0) << nearest.err;
+  const Result nearest = run(base + "--time-limit 60 --trials 2");
+  EXPECT_TRUE(nearest.status == 0 || nearest.status == 4) << nearest.err;  // a plan written
+  EXPECT_NE(nearest.out.find("exact plan"), std::string::npos) << nearest.out;
   const Result absolute = run(base + "--time-limit 1 --goal-angle absolute");
   ASSERT_EQ(absolute.status, 3) << absolute.out << absolute.err;
   const auto at = absolute.out.find("best distance ");
@@ -523,6 +495,9 @@ TEST(PlanReorientation, BadInputIsRefusedWithExitTwo) {
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --optimize-tolerance tight",
        "--optimize-tolerance"},
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --goal-angle round", "--goal-angle"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --trials 0", "--trials"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --trials 2.5", "--trials"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --trial-seed 0", "--trial-seed"},
   };
   for (const Case& c : cases) {
     const std::string out = writeTemp("never.json", "");

@@ -13,6 +13,7 @@
 
 #include "../../controller/src/snapshot_slots.h"
 #include "rbsf/controller/reorientation_controller.h"
+#include "rbsf/dynamics/control_law.h"
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/planner/plan_reference.h"
 
@@ -28,6 +29,8 @@ ReorientationRequest smallRequest(std::uint32_t seed = 7, double degrees = -15.0
   r.problem.goal = {0.1, 0.40, degrees * M_PI / 180.0};
   r.planner.seed = seed;
   r.planner.time_limit = 120.0;  // generous: the search ends at the goal (sanitizers are slow)
+  r.certificate.trials = 4;      // the facade's threading, not the plan, is under test
+  r.accept_uncertified = true;
   return r;
 }
 
@@ -49,9 +52,9 @@ TEST(ReorientationController, NoPlanBeforeTheFirstRequest) {
   out.t = -42.0;  // untouched by a "no plan" sample
   EXPECT_FALSE(c.sample(0.5, out));
   EXPECT_EQ(out.t, -42.0);
-  const VecQ q = VecQ::Zero(c.model().configDim());
+  const VecU joints = VecU::Zero(c.model().controlDim());
   VecU tau = VecU::Constant(c.model().controlDim(), 7.0);
-  EXPECT_FALSE(c.computeTorque(0.5, q, q, tau, out));
+  EXPECT_FALSE(c.track(0.5, joints, tau));
   EXPECT_TRUE((tau.array() == 7.0).all());
 }
 
@@ -60,10 +63,15 @@ TEST(ReorientationController, PlanCompletesAndSamplingReturnsItsKnots) {
   ASSERT_TRUE(c.plan(smallRequest()));
   c.wait();
   ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
-  EXPECT_EQ(c.outcome(), PlanOutcome::kExact);
   const RequestResult result = c.result();
   const planner::Plan& plan = result.plan;
   ASSERT_EQ(plan.status, "exact");
+  // Published with its certificate; the outcome says whether it earned it.
+  ASSERT_TRUE(plan.certificate.ran);
+  EXPECT_EQ(plan.certificate.trials, 4);
+  EXPECT_EQ(c.outcome(),
+            plan.certificate.certified ? PlanOutcome::kExact : PlanOutcome::kNotCertified);
+  EXPECT_NE(result.message.find("certified"), std::string::npos) << result.message;
   EXPECT_EQ(result.plan_id, 1u);
   EXPECT_EQ(c.planId(), 1u);
 
@@ -90,30 +98,30 @@ TEST(ReorientationController, PlanCompletesAndSamplingReturnsItsKnots) {
     EXPECT_EQ(ref.phase, seg.phase);
     t0 += seg.duration;
   }
-  // The tracking controller on the reference itself adds nothing to the feed-forward
-  // (unless the feed-forward is beyond the limits, which the planner never samples).
-  VecU tau;
-  for (const planner::PlanSample& s : plan.samples) {
-    ASSERT_TRUE(c.computeTorque(s.t, s.q, s.v, tau, ref));
-    EXPECT_LE((tau - ref.tau).cwiseAbs().maxCoeff(), 1e-6 * (1.0 + ref.tau.norm()));
-  }
-  // Off the reference: the plan's own tracking controller (gains at q0) on the reference at
-  // t with the feed-forward of t + h/2, computed here from the plan directly.
-  const ReferenceTrajectory reference = planner::makeReference(plan);
-  const TrackingController tracking(c.model(), plan.q0);
-  ReferenceSample at, mid;
-  VecU want;
-  for (int k = 0; k <= 200; ++k) {
-    const double t = k * plan.duration() / 200;
-    reference.sample(t, at);
-    reference.sample(t + 0.5 * plan.simulator.time_step, mid);
-    at.tau = mid.tau;
-    const VecQ q = at.q + VecQ::Constant(at.q.size(), 1e-3 * std::sin(k));
-    const VecQ v = at.v + VecQ::Constant(at.v.size(), 1e-2 * std::cos(k));
-    tracking.compute(q, v, at, want);
-    ASSERT_TRUE(c.computeTorque(t, q, v, tau, ref));
-    EXPECT_EQ(tau, want) << "t = " << t;
-    EXPECT_NE(tau, at.tau) << "the feedback acts off the reference";
+  // track() runs the control law of the published plan: the same inputs as a law built
+  // here on the plan's own schedule, fed the same joints and part poses.
+  const FeedbackSchedule schedule(c.model(), planner::makeReference(plan), c.model().cell().sensing,
+                                  plan.simulator);
+  ControlLaw law(schedule);
+  VecU tau, want;
+  const double h = plan.simulator.time_step;
+  for (long k = 0; k * h <= plan.duration(); ++k) {
+    const double t = k * h;
+    ReferenceSample at;
+    schedule.reference(t, at);
+    VecU joints(c.model().controlDim());
+    for (int j = 0; j < joints.size(); ++j)
+      joints[j] = at.q[layout::inputToConfig(j)] + 1e-4 * std::sin(0.01 * k + j);
+    if (k % 10 == 0) {
+      const Pose pose{at.q[layout::kX] + 1e-4, at.q[layout::kY], at.q[layout::kPhi]};
+      c.addPartPose(t, pose);
+      law.addPartPose(t, pose);
+    }
+    std::uint64_t tracked = 0;
+    ASSERT_TRUE(c.track(t, joints, tau, &tracked));
+    EXPECT_EQ(tracked, 1u);
+    law.compute(t, joints, want);
+    ASSERT_EQ(tau, want) << "t = " << t;
   }
 }
 

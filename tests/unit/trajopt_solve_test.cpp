@@ -245,28 +245,57 @@ TEST(TrajoptSlipRate, SlidingContactsSlideAtLeastAtTheMinimumRate) {
   EXPECT_GE(slowest(held), 1.0 - 1e-5);
 }
 
-TEST(TrajoptRefinement, ARejectedSolveIsRetriedOnceWithAMinimumSlipRate) {
-  // One Ipopt iteration never converges: both solves fail, and the reason names both; with
-  // the retry switched off there is one solve.
+TEST(TrajoptRefinement, AFailedSolveIsRetriedOnceWithAMinimumSlipRate) {
+  // One Ipopt iteration never converges: both solves fail, the reason names both, and the
+  // planner's plan is written with its own certificate; with the retry switched off there
+  // is one solve.
   OptimizerSettings s = testSettings();
   s.max_iterations = 1;
   const PlanOptimizer opt(test::defaultModel(), s);
-  const Simulator sim(test::defaultModel(), SimulatorSettings{});
   const planner::Plan& plan = test::shortPlan();
-  const RefineOutcome twice = refinePlan(opt, sim, plan, planner::ReplaySettings{});
-  EXPECT_FALSE(twice.accepted);
+  RefineSettings few;
+  few.certificate.trials = 4;
+  const RefineOutcome twice = refinePlan(opt, plan, few);
+  EXPECT_FALSE(twice.refined);
   EXPECT_EQ(twice.attempts, 2);
   EXPECT_NE(twice.reason.find("Maximum_Iterations_Exceeded"), std::string::npos) << twice.reason;
-  EXPECT_NE(twice.reason.find("retry with min_slip_rate = 0.1: optimisation failed"),
-            std::string::npos)
+  EXPECT_NE(twice.reason.find("retry with min_slip_rate: optimisation failed"), std::string::npos)
       << twice.reason;
   EXPECT_EQ(twice.plan.optimization.message, twice.reason);
+  EXPECT_FALSE(twice.plan.optimization.chosen);
   EXPECT_EQ(twice.plan.segments.size(), plan.segments.size());  // the planner's plan, kept
-  RefineSettings no_retry;
+  ASSERT_TRUE(twice.plan.certificate.ran);
+  EXPECT_EQ(twice.plan.certificate.trials, 4);
+  EXPECT_EQ(twice.plan.certificate.successes, twice.planner_certificate.successes);
+  RefineSettings no_retry = few;
   no_retry.retry_min_slip_rate = 0.0;
-  const RefineOutcome once = refinePlan(opt, sim, plan, planner::ReplaySettings{}, no_retry);
+  const RefineOutcome once = refinePlan(opt, plan, no_retry);
   EXPECT_EQ(once.attempts, 1);
   EXPECT_EQ(once.reason.find("retry"), std::string::npos) << once.reason;
+}
+
+TEST(TrajoptRefinement, TheBetterCertificateIsWritten) {
+  // A converged refinement is certified beside the planner's plan, and the plan written
+  // carries the certificate of the one chosen: never fewer successes than the other's.
+  const PlanOptimizer opt(test::defaultModel(), testSettings());
+  const planner::Plan& plan = test::shortPlan();
+  RefineSettings few;
+  few.certificate.trials = 4;
+  few.retry_min_slip_rate = 0.0;
+  const RefineOutcome r = refinePlan(opt, plan, few);
+  ASSERT_EQ(r.attempts, 1);
+  ASSERT_TRUE(r.plan.certificate.ran);
+  const double refined_rate = r.plan.optimization.refined_success_rate;
+  ASSERT_GE(refined_rate, 0.0) << r.plan.optimization.message;
+  EXPECT_GE(r.plan.certificate.success_rate, r.planner_certificate.success_rate);
+  EXPECT_GE(r.plan.certificate.success_rate, refined_rate);
+  EXPECT_EQ(r.refined, r.plan.optimization.chosen);
+  if (r.refined) {
+    EXPECT_EQ(r.plan.certificate.success_rate, refined_rate);
+  } else {
+    EXPECT_EQ(r.plan.segments.size(), plan.segments.size());
+    EXPECT_EQ(r.plan.certificate.successes, r.planner_certificate.successes);
+  }
 }
 
 TEST(TrajoptFailure, TooFewKnotsForThePhaseRunsIsReported) {

@@ -20,11 +20,13 @@ const char* color(int i) { return kPalette[i % 12]; }
 
 HtmlReport::HtmlReport(const RbsfModel& model, std::vector<TrajectorySample> frames,
                        SvgAnimationOptions animation,
-                       std::vector<std::pair<std::string, std::string>> summary)
+                       std::vector<std::pair<std::string, std::string>> summary,
+                       ReportVerdict verdict)
     : model_(model),
       frames_(std::move(frames)),
       animation_(std::move(animation)),
-      summary_(std::move(summary)) {
+      summary_(std::move(summary)),
+      verdict_(std::move(verdict)) {
   // Validates the frames (sizes, time order) before anything is drawn.
   SvgAnimation check(model_, frames_, animation_);
 }
@@ -70,8 +72,17 @@ std::string HtmlReport::render() const {
       "table { border-collapse: collapse; margin-bottom: 1em; }\n"
       "td { padding: 2px 12px 2px 0; } td:first-child { font-weight: bold; }\n"
       ".legend span { display: inline-block; padding: 2px 8px; margin-right: 6px; }\n"
-      ".plot { margin: 4px 0; }\n</style>\n</head>\n<body>\n<h1>" +
-      escapeXml(animation_.title) + "</h1>\n<table>\n";
+      ".plot { margin: 4px 0; }\n"
+      ".verdict { padding: 8px 14px; margin-bottom: 1em; border: 2px solid; max-width: 60em; }\n"
+      ".verdict.good { background: #e3f5e1; border-color: #2e7d32; }\n"
+      ".verdict.bad { background: #fdecea; border-color: #c62828; }\n"
+      ".verdict h2 { margin: 0 0 4px 0; font-size: 1.2em; }\n</style>\n</head>\n<body>\n<h1>" +
+      escapeXml(animation_.title) + "</h1>\n";
+  if (verdict_.shown)
+    s += std::string("<div id=\"verdict\" class=\"verdict ") + (verdict_.good ? "good" : "bad") +
+         "\">\n<h2>" + escapeXml(verdict_.headline) + "</h2>\n<p>" + escapeXml(verdict_.detail) +
+         "</p>\n</div>\n";
+  s += "<table>\n";
   for (const auto& [key, value] : summary_)
     s += "<tr><td>" + escapeXml(key) + "</td><td>" + escapeXml(value) + "</td></tr>\n";
   s += "</table>\n<p class=\"legend\">Phases: ";

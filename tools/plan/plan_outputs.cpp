@@ -91,8 +91,21 @@ void PlanOutputs::write(const RbsfModel& model, const planner::Plan& plan) const
           {"search", plan.planner + format(", seed %.0f, %.0f propagations", plan.seed,
                                            static_cast<double>(plan.propagations))}};
       if (file.wall_clock) rows.emplace_back("planning time", format("%.3f s", plan.planning_time));
-      texts.emplace_back(o_.report,
-                         HtmlReport(model, frames(model, plan), a, std::move(rows)).render());
+      ReportVerdict verdict;
+      if (plan.certificate.ran) {
+        const planner::Certificate& c = plan.certificate;
+        verdict = {true, c.certified, planner::verdictText(c),
+                   "Law: " + c.law + ". Worst " + planner::worstTrialText(c) + "."};
+        rows.emplace_back("certificate",
+                          format("%.0f trials, seed %.0f, %.0f %% required", c.trials,
+                                 static_cast<double>(c.seed), 100.0 * c.required_rate));
+      } else {
+        verdict = {true, false, "not certified: no closed-loop trials were run",
+                   "Without the evidence of closed-loop trials this plan may not run on a cell."};
+      }
+      texts.emplace_back(
+          o_.report,
+          HtmlReport(model, frames(model, plan), a, std::move(rows), std::move(verdict)).render());
     }
   }
   const char* what[] = {"--out", "--csv", "--svg", "--report"};

@@ -1,13 +1,15 @@
 // plan-reorientation: torques tau(t) that take the part from where it rests to a goal pose
-// (kinodynamic search on OMPL with the hybrid contact simulator as propagator), then refined
-// by the trajectory optimiser and verified by replay (rbsf/trajopt/plan_refinement.h) unless
-// --no-optimize.
+// (kinodynamic search on OMPL with the hybrid contact simulator as propagator), refined by
+// the trajectory optimiser unless --no-optimize, and certified: every plan written is run
+// --trials times closed loop under the cell's sensing and uncertainty
+// (rbsf/planner/certificate.h); of the planner's plan and the refined plan the one with
+// the better certificate is written (rbsf/trajopt/plan_refinement.h).
 //
-// Exit status: 0 exact plan written (optimised and accepted, or --no-optimize); 4 exact plan
-// written but the optimisation failed or was rejected (the planner's plan, marked); 3 time
-// limit without an exact plan (best distance printed, not optimised); 2 bad input (option,
-// value, cell, a start the fingers cannot hold, a goal no finger reaches); 130 stopped by
-// SIGINT (best plan so far written); 1 internal error.
+// Exit status: 0 a certified plan written; 4 an exact plan written but not certified
+// (verdict and worst trial on stderr); 3 time limit without an exact plan (best distance
+// printed; the approximate plan, certified, written); 2 bad input (option, value, cell, a
+// start the fingers cannot hold, a goal no finger reaches); 130 stopped by SIGINT (best
+// plan so far written, not certified); 1 internal error.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -18,7 +20,7 @@
 
 #include "plan_outputs.h"
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/planner/plan_replay.h"
+#include "rbsf/planner/certificate.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
@@ -29,49 +31,38 @@ namespace rbsf::tools {
 namespace {
 
 constexpr int kExitTimeLimit = 3;
-constexpr int kExitNotOptimised = 4;
+constexpr int kExitNotCertified = 4;
 
 struct Options {
-  std::string cell, start, goal, start_theta = "0", planner = "KPIECE1", time_limit = "30",
-                                 seed = "1", out, csv, svg, report, svg_still = "0", knots = "100",
-                                 optimize_time_limit = "30", optimize_iterations = "500",
-                                 optimize_tolerance = "1e-6", goal_angle = "nearest";
+  std::string cell, start, goal,
+      start_theta = "0", planner = "KPIECE1", time_limit = "30", seed = "1", out, csv, svg, report,
+      svg_still = "0", knots = "100", optimize_time_limit = "30", optimize_iterations = "500",
+      optimize_tolerance = "1e-6", goal_angle = "nearest", trials = "32", trial_seed = "1";
   bool quiet = false, no_optimize = false, reproducible = false, no_decisive_modes = false;
 };
 
-/// ", " and planner::departureText when the replay left the planned path, else "".
-std::string departureSuffix(const planner::ReplayResult& x) {
-  const std::string text = planner::departureText(x);
-  return text.empty() ? text : ", " + text;
-}
-
-/// One line on the optimisation and one per replay.
-void printRefineSummary(const trajopt::RefineOutcome& r) {
+/// The optimiser's line: which solve, how it went, and whether its plan was chosen.
+void printOptimisation(const trajopt::RefineOutcome& r) {
   const planner::OptimizationSummary& o = r.plan.optimization;
-  // The summary is the accepted solve's, else the first's (see refinePlan).
-  const char* which = r.attempts < 2 ? "" : (r.accepted ? " (the retry)" : " (first of 2 solves)");
+  const char* which = r.attempts < 2 ? "" : (r.refined ? " (the retry)" : " (first of 2 solves)");
   std::printf("optimisation%s: %s, %d iterations, %.3f s, cost %.6g -> %.6g\n", which,
               o.status.c_str(), o.iterations, o.solve_time, o.cost_before, o.cost_after);
-  const planner::ReplaySummary& s = r.plan.replay;
-  if (s.ran) {
-    for (const auto& [name, x] :
-         {std::pair{"closed loop", &s.closed_loop}, std::pair{"open loop", &s.open_loop}})
-      std::printf(
-          "replay %s: position error %.4g m, angle error %.4g deg, min f_n %.4g N, "
-          "phases %s%s\n",
-          name, x->position_error, x->angle_error * 180.0 / M_PI, x->min_f_n, x->phases.c_str(),
-          departureSuffix(*x).c_str());
-    std::printf("optimised plan %s\n", r.accepted ? "accepted" : "rejected");
-  }
-  const planner::ReplaySummary& k = r.plan.planner_replay;
-  if (k.ran)
-    std::printf(
-        "planner's plan, replay closed loop: position error %.4g m, angle error %.4g deg, "
-        "phases %s%s: %s\n",
-        k.closed_loop.position_error, k.closed_loop.angle_error * 180.0 / M_PI,
-        k.closed_loop.phases.c_str(), departureSuffix(k.closed_loop).c_str(),
-        k.accepted ? "passes the same check"
-                   : "does NOT pass the same check (the tracking controller does not hold it)");
+  std::printf("planner's plan: %s\n", planner::verdictText(r.planner_certificate).c_str());
+  if (o.refined_success_rate >= 0.0)
+    std::printf("optimised plan: %.0f %% of the trials succeeded\n",
+                100.0 * o.refined_success_rate);
+  std::printf("written: the %s plan%s\n", r.refined ? "optimised" : "planner's",
+              r.refined || o.message.empty() ? "" : (" (" + o.message + ")").c_str());
+}
+
+/// The certificate of the plan written: verdict, law and worst trial, in metres and degrees.
+void printCertificate(const planner::Certificate& c) {
+  std::printf("certificate (%s, %d trials, seed %llu): %s\n", c.law.c_str(), c.trials,
+              static_cast<unsigned long long>(c.seed), c.certified ? "CERTIFIED" : "NOT CERTIFIED");
+  std::printf("  %d/%d trials succeeded (%.0f %%, %.0f %% required)\n", c.successes, c.trials,
+              100.0 * c.success_rate, 100.0 * c.required_rate);
+  std::printf("  worst %s\n", planner::worstTrialText(c).c_str());
+  if (!c.worst.success) std::printf("  it failed: %s\n", c.worst.failure.c_str());
 }
 
 int run(int argc, char** argv) {
@@ -81,20 +72,19 @@ int run(int argc, char** argv) {
       "Poses: COM x,y [m] and angle (radians, or degrees with a deg suffix).",
       "plan-reorientation"};
   app.footer(
-      "Exact plans are refined by the trajectory optimiser and replayed in the simulator open "
-      "and closed loop (tracking controller); the refined plan is written only when the "
-      "closed-loop replay ends within 1 cm and 2 degrees of the goal with f_n >= 0 and the "
-      "planned phase sequence (a part brought to rest may add one last run with more sticking "
-      "contacts; a rejected refinement is solved once more with a minimum slip "
-      "rate for sliding contacts), else the planner's plan is written marked accepted: "
-      "false.\n"
-      "Exit status: 0 exact plan written (optimised and accepted, or --no-optimize); 4 exact "
-      "plan written but the optimisation failed or was rejected (reason on stderr); 3 time "
-      "limit without an exact plan (best distance printed; not optimised); 2 bad input "
-      "(option, value, file, a start the fingers cannot hold, a goal no finger reaches), "
-      "with one message on stderr; 130 stopped by SIGINT (Ctrl-C, during the search or the "
-      "optimisation: the best plan so far is written; a second Ctrl-C exits at once, writing "
-      "nothing); 1 internal error.");
+      "Every plan written is certified: replayed --trials times in closed loop under the "
+      "cell's sensing and uncertainty (cell keys sensing and uncertainty) and judged by "
+      "outcome: the part ends at rest within 1 cm and 2 degrees of the goal, never dropped, "
+      "inputs within their limits; certified when 95 % of the trials succeed. Exact plans "
+      "are refined by the trajectory optimiser (unless --no-optimize) and the plan with the "
+      "better certificate is written.\n"
+      "Exit status: 0 a certified plan written; 4 an exact plan written but not certified "
+      "(verdict on stderr); 3 time limit without an exact plan (best distance printed; the "
+      "approximate plan written); 2 bad input (option, value, file, a start the fingers "
+      "cannot hold, a goal no finger reaches), with one message on stderr; 130 stopped by "
+      "SIGINT (Ctrl-C, during the search or the optimisation: the best plan so far is "
+      "written, not certified; a second Ctrl-C exits at once, writing nothing); 1 internal "
+      "error.");
   Options o;
   app.add_option("--cell", o.cell, "cell YAML file")->required();
   app.add_option("--start", o.start, "start pose x,y,phi (part at rest)")->required();
@@ -128,6 +118,10 @@ int run(int argc, char** argv) {
   app.add_option("--optimize-tolerance", o.optimize_tolerance,
                  "optimiser convergence tolerance, Ipopt's tol in (0, 1] (default 1e-6; 1e-4 "
                  "takes about a quarter fewer iterations, see README)");
+  app.add_option("--trials", o.trials,
+                 "closed-loop trials of the certificate, 1..100000 (default 32)");
+  app.add_option("--trial-seed", o.trial_seed,
+                 "seed of the certificate's draws, positive integer (default 1)");
   parseCommandLine(app, argc, argv);
   const PlanOutputs outputs({o.out, o.csv, o.svg, o.report, o.reproducible,
                              parseNumber(o.svg_still, "--svg-still"), o.cell});
@@ -157,6 +151,16 @@ int run(int argc, char** argv) {
   opt_settings.tolerance = parseNumber(o.optimize_tolerance, "--optimize-tolerance");
   if (!(opt_settings.tolerance > 0.0 && opt_settings.tolerance <= 1.0))
     throw InputError("--optimize-tolerance: must be in (0, 1] (got " + o.optimize_tolerance + ")");
+  trajopt::RefineSettings refine;
+  planner::CertificateSettings& certificate = refine.certificate;
+  const double trials = parseNumber(o.trials, "--trials");
+  if (trials < 1 || trials > 100000 || trials != std::floor(trials))
+    throw InputError("--trials: must be an integer in 1..100000 (got " + o.trials + ")");
+  certificate.trials = static_cast<int>(trials);
+  const double trial_seed = parseNumber(o.trial_seed, "--trial-seed");
+  if (trial_seed < 1 || trial_seed > 9007199254740992.0 || trial_seed != std::floor(trial_seed))
+    throw InputError("--trial-seed: must be a positive integer (got " + o.trial_seed + ")");
+  certificate.seed = static_cast<std::uint64_t>(trial_seed);
   planner::Problem problem;
   problem.start = parsePose(o.start, "--start");
   problem.goal = parsePose(o.goal, "--goal");
@@ -190,36 +194,54 @@ int run(int argc, char** argv) {
                 static_cast<unsigned long long>(rp.propagations()));
     return kExitInterrupted;
   }
+  auto stage = [&](const char* what) {
+    if (tty) std::fprintf(stderr, "plan-reorientation: %s\n", what);
+  };
+  certificate.trial.position_tolerance = settings.position_tolerance;
+  certificate.trial.angle_tolerance = settings.angle_tolerance;
   if (found && plan.status == "exact") {
     std::printf(
         "exact plan: %zu segments, %.3f s of motion, phases %s; planned in %.3f s, %llu "
         "propagations\n",
         plan.segments.size(), plan.duration(), plan.phaseSequence().c_str(), plan.planning_time,
         static_cast<unsigned long long>(plan.propagations));
-    int status = 0;
     if (!o.no_optimize) {
-      planner::ReplaySettings replay;  // the planner's goal tolerances
-      replay.position_tolerance = settings.position_tolerance;
-      replay.angle_tolerance = settings.angle_tolerance;
-      trajopt::RefineOutcome refined = trajopt::refinePlan(optimizer, rp.simulator(), plan, replay);
-      if (InterruptFlag::raised()) {  // the optimiser stopped: the planner's plan, marked
-        outputs.write(model, refined.plan);
-        std::printf("interrupted during the optimisation: planner's plan%s\n",
+      stage("optimising, then certifying the planner's and the optimised plans");
+      trajopt::RefineOutcome refined = trajopt::refinePlan(optimizer, plan, refine);
+      if (InterruptFlag::raised()) {  // stopped: the planner's plan, not certified
+        plan.certificate = {};
+        outputs.write(model, plan);
+        std::printf("interrupted during the optimisation: planner's plan%s, not certified\n",
                     outputs.any() ? " written" : "");
         return kExitInterrupted;
       }
-      printRefineSummary(refined);
-      if (!refined.accepted) {
-        std::fprintf(stderr, "plan-reorientation: planner's plan kept: %s\n",
-                     refined.reason.c_str());
-        status = kExitNotOptimised;
-      }
+      printOptimisation(refined);
       plan = std::move(refined.plan);
+    } else {
+      stage("certifying the plan");
+      plan.certificate = planner::certify(model, plan, certificate, nullptr, settings.cancel);
+      if (InterruptFlag::raised()) {
+        plan.certificate = {};
+        outputs.write(model, plan);
+        std::printf("interrupted while certifying: plan%s, not certified\n",
+                    outputs.any() ? " written" : "");
+        return kExitInterrupted;
+      }
     }
+    printCertificate(plan.certificate);
     outputs.write(model, plan);
-    return status;
+    if (plan.certificate.certified) return 0;
+    std::fprintf(stderr, "plan-reorientation: the plan written is %s\n",
+                 planner::verdictText(plan.certificate).c_str());
+    return kExitNotCertified;
   }
-  if (found) outputs.write(model, plan);
+  if (found) {
+    stage("certifying the approximate plan");
+    plan.certificate = planner::certify(model, plan, certificate, nullptr, settings.cancel);
+    if (InterruptFlag::raised()) plan.certificate = {};
+    if (plan.certificate.ran) printCertificate(plan.certificate);
+    outputs.write(model, plan);
+  }
   std::printf(
       "no exact plan within %.3g s: best distance %.3g (tolerance units: 1 = 1 cm or "
       "2 deg)%s; %llu propagations\n",

@@ -1,8 +1,10 @@
 #include "rbsf/trajopt/plan_refinement.h"
 
 #include <cmath>
-#include <exception>
+#include <limits>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace rbsf::trajopt {
 
@@ -13,11 +15,6 @@ void finite(double& x, const char* what, std::string& note) {
   if (std::isfinite(x)) return;
   x = 0.0;
   note += std::string(note.empty() ? "" : "; ") + what + " not finite (written as 0)";
-}
-
-bool finiteReplay(const planner::ReplayResult& r) {
-  return std::isfinite(r.position_error) && std::isfinite(r.angle_error) &&
-         std::isfinite(r.min_f_n) && std::isfinite(r.max_tracking_error);
 }
 
 /// Every number the plan file would hold for the segments and samples is finite.
@@ -31,103 +28,113 @@ bool finitePlan(const planner::Plan& p) {
   return true;
 }
 
-/// One solve and its verdict.
-struct Attempt {
-  OptimizedPlan opt;
-  planner::OptimizationSummary summary;
-  planner::ReplaySummary verdict;
-  std::string reason;  ///< empty when accepted
-  std::string note;    ///< non-finite summary numbers, zeroed
-  bool accepted = false;
+/// A certificate's rank: successes, then the final error of its worst trial (smaller wins).
+std::pair<int, double> rank(const planner::Certificate& c) {
+  const planner::TrialOutcome& w = c.worst;
+  const double error = w.dropped ? std::numeric_limits<double>::infinity()
+                                 : std::max(w.position_error / c.position_tolerance,
+                                            w.angle_error / c.angle_tolerance);
+  return {c.successes, -error};
+}
 
-  /// \brief The summary's message: `text`, then the note.
-  void setMessage(const std::string& text) {
-    summary.message = text;
-    if (!note.empty()) summary.message += (text.empty() ? "" : "; ") + note;
-  }
+bool cancelled(const PlanOptimizer& o) {
+  return o.settings().cancel != nullptr && o.settings().cancel->load();
+}
+
+/// One solve: its plan (when it succeeded and is finite) and its summary.
+struct Attempt {
+  bool usable = false;
+  planner::Plan plan;
+  planner::OptimizationSummary summary;
+  std::string reason;  ///< why it is not usable
 };
 
-Attempt attempt(const PlanOptimizer& optimizer, const Simulator& simulator,
-                const planner::Plan& plan, const planner::ReplaySettings& replay) {
+Attempt solve(const PlanOptimizer& optimizer, const planner::Plan& plan) {
   Attempt a;
-  a.opt = optimizer.optimize(plan);
-  a.summary = a.opt.plan.optimization;
+  OptimizedPlan opt = optimizer.optimize(plan);
+  a.summary = opt.plan.optimization;
   a.summary.ran = true;
-  finite(a.summary.solve_time, "solve_time", a.note);
-  finite(a.summary.cost_before, "cost_before", a.note);
-  finite(a.summary.cost_after, "cost_after", a.note);
-  if (!a.opt.success) {
+  std::string note;
+  finite(a.summary.solve_time, "solve_time", note);
+  finite(a.summary.cost_before, "cost_before", note);
+  finite(a.summary.cost_after, "cost_after", note);
+  if (!opt.success) {
     a.reason = "optimisation failed (Ipopt status " + a.summary.status + ")";
     if (!a.summary.message.empty()) a.reason += ": " + a.summary.message;
+  } else if (!finitePlan(opt.plan)) {
+    a.reason = "the optimised plan holds a non-finite value";
   } else {
-    std::string why = "it holds a non-finite value";
-    if (finitePlan(a.opt.plan)) {
-      try {
-        a.verdict = planner::verifyPlan(simulator, a.opt.plan, replay, &why);
-      } catch (const std::exception& e) {  // e.g. a bad knot: not the user's input
-        a.verdict = {};
-        why = std::string("cannot replay it: ") + e.what();
-      }
-    }
-    if (!a.verdict.ran) {
-      a.reason = "optimised plan rejected: " + why;
-    } else if (!finiteReplay(a.verdict.closed_loop) || !finiteReplay(a.verdict.open_loop)) {
-      a.verdict = {};  // a diverged replay is not written
-      a.reason = "optimised plan rejected: its replay diverged (non-finite state)";
-    } else if (!a.verdict.accepted) {
-      a.reason = "optimised plan rejected: " + why;
-    }
+    a.usable = true;
+    a.plan = std::move(opt.plan);
   }
-  a.accepted = a.opt.success && a.verdict.accepted;
-  a.setMessage(a.reason);
+  if (!note.empty()) a.reason += (a.reason.empty() ? "" : "; ") + note;
   return a;
 }
 
 }  // namespace
 
-RefineOutcome refinePlan(const PlanOptimizer& optimizer, const Simulator& simulator,
-                         const planner::Plan& plan, const planner::ReplaySettings& replay,
+RefineOutcome refinePlan(const PlanOptimizer& optimizer, const planner::Plan& plan,
                          const RefineSettings& settings) {
+  const RbsfModel& model = optimizer.model();
+  const std::atomic<bool>* cancel = optimizer.settings().cancel;
   RefineOutcome out;
-  Attempt first = attempt(optimizer, simulator, plan, replay);
-  out.attempts = 1;
-  const OptimizerSettings& os = optimizer.settings();
-  const bool cancelled = os.cancel != nullptr && os.cancel->load();
+  out.plan = plan;
+  out.planner_certificate = planner::certify(model, plan, settings.certificate, nullptr, cancel);
+  out.plan.certificate = out.planner_certificate;
+
+  std::vector<Attempt> attempts;
+  std::vector<planner::Certificate> certificates;
+  auto attempt = [&](const PlanOptimizer& o) {
+    attempts.push_back(solve(o, plan));
+    certificates.emplace_back();
+    Attempt& a = attempts.back();
+    if (a.usable && !cancelled(o)) {
+      certificates.back() = planner::certify(model, a.plan, settings.certificate, nullptr, cancel);
+      a.summary.refined_success_rate = certificates.back().success_rate;
+    }
+  };
+  if (!cancelled(optimizer)) attempt(optimizer);
   const double retry = settings.retry_min_slip_rate;
-  Attempt* chosen = &first;
-  Attempt second;
-  if (!first.accepted && !cancelled && retry > 0.0 && retry != os.min_slip_rate) {
-    OptimizerSettings again = os;
+  if (!attempts.empty() && !certificates.back().certified && !cancelled(optimizer) && retry > 0.0 &&
+      retry != optimizer.settings().min_slip_rate) {
+    OptimizerSettings again = optimizer.settings();
     again.min_slip_rate = retry;
-    second = attempt(PlanOptimizer(optimizer.model(), again), simulator, plan, replay);
-    out.attempts = 2;
-    std::ostringstream what;
-    what << "retry with min_slip_rate = " << retry;
-    if (second.accepted) {
-      chosen = &second;
-      second.setMessage(what.str() + " accepted; the first solve's " + first.reason);
-    } else {
-      first.reason += "; " + what.str() + ": " + second.reason;
-      first.setMessage(first.reason);
-    }
+    attempt(PlanOptimizer(model, again));
   }
-  out.accepted = chosen->accepted;
-  out.reason = chosen->reason;
-  out.plan = out.accepted ? std::move(chosen->opt.plan) : plan;
-  out.plan.optimization = chosen->summary;
-  out.plan.replay = chosen->verdict;
-  if (!out.accepted) {
-    // The plan in the file is the planner's: say whether it passes the same check, since a
-    // planner's plan can be exact in simulation yet not survive joint tracking.
-    try {
-      out.plan.planner_replay = planner::verifyPlan(simulator, plan, replay);
-    } catch (const std::exception&) {
-      out.plan.planner_replay = {};
-    }
-    if (!finiteReplay(out.plan.planner_replay.closed_loop) ||
-        !finiteReplay(out.plan.planner_replay.open_loop))
-      out.plan.planner_replay = {};  // diverged: not written
+  out.attempts = static_cast<int>(attempts.size());
+  if (attempts.empty()) return out;
+
+  // The better certificate wins; the planner's plan is the first candidate.
+  int best = -1;
+  for (int k = 0; k < out.attempts; ++k) {
+    if (!certificates[k].ran) continue;
+    const planner::Certificate& incumbent = best < 0 ? out.planner_certificate : certificates[best];
+    if (!incumbent.ran || rank(certificates[k]) > rank(incumbent)) best = k;
   }
+  std::ostringstream why;
+  for (int k = 0; k < out.attempts; ++k) {
+    if (k == best) continue;
+    why << (why.tellp() > 0 ? "; " : "") << (k == 0 ? "first solve" : "retry with min_slip_rate")
+        << ": ";
+    if (!attempts[k].usable)
+      why << attempts[k].reason;
+    else if (!certificates[k].ran)
+      why << "not certified (cancelled)";
+    else
+      why << "its certificate (" << certificates[k].successes << "/" << certificates[k].trials
+          << ") is not better than the " << (best < 0 ? "planner's" : "chosen") << " plan's";
+  }
+  const int summary = best < 0 ? 0 : best;
+  if (best >= 0) {
+    out.plan = std::move(attempts[best].plan);
+    out.plan.certificate = certificates[best];
+    out.refined = true;
+  } else {
+    out.reason = why.str();
+  }
+  out.plan.optimization = attempts[summary].summary;
+  out.plan.optimization.chosen = out.refined;
+  out.plan.optimization.message = why.str();
   return out;
 }
 

@@ -1,27 +1,32 @@
 #pragma once
 /// \file
-/// \brief The library's face for a cell controller: load a cell, plan a reorientation on
-///        a worker thread, and sample the plan (or track it) from a real-time loop.
+/// \brief The library's face for a cell controller: load a cell, plan and certify a
+///        reorientation on a worker thread, and execute the plan from a real-time loop with
+///        the control law (rbsf/dynamics/control_law.h).
 ///
 /// Threads. plan() starts a worker thread and returns at once; the worker runs the
 /// planner (planner/reorientation_planner.h) and, when asked and built in, the optimiser
-/// (trajopt/plan_optimizer.h), then builds the plan's ReferenceTrajectory
-/// (dynamics/reference_trajectory.h) and publishes it. Any number of threads may call
-/// sample(), computeTorque(), publishedPlan(), status(), outcome() and planId() at any
-/// time, also while the worker runs: they take no lock, allocate nothing and free nothing (the
-/// published plan is an immutable snapshot handed over through three slots; see
-/// src/snapshot_slots.h). The other members (plan(), cancel(), wait(), result()) may be called from
-/// any non-real-time thread; cancel() is also async-signal-safe.
+/// (trajopt/plan_refinement.h), certifies the result (planner/certificate.h: closed-loop
+/// trials under the cell's sensing and uncertainty), builds the plan's feedback schedule
+/// and publishes it. Any number of threads may call sample(), publishedPlan(), status(),
+/// outcome() and planId() at any time, also while the worker runs: they take no lock,
+/// allocate nothing and free nothing (the published plan is an immutable snapshot handed
+/// over through three slots; see src/snapshot_slots.h). track() and addPartPose() run the
+/// control law's estimator, which has state: call them from one real-time loop thread
+/// only (they too take no lock and allocate nothing). The other members (plan(), cancel(),
+/// wait(), result()) may be called from any non-real-time thread; cancel() is also
+/// async-signal-safe.
 ///
 /// Plan time. A plan starts at t = 0 with the part at rest at the problem's start (q0 =
-/// the fingers placed at start_theta) and ends at its duration (publishedPlan()); sampling clamps t
-/// to that interval (before 0: the start, after the end: the final reference and the last tau).
+/// the fingers placed at start_theta) and ends at its duration (publishedPlan()); after it
+/// the law holds the final pose at rest. Sampling clamps t to the plan.
 ///
 /// Life of a request: status() goes kIdle -> kPlanning -> kReady (a plan was published:
-/// outcome() kExact or kOptimized, or kApproximate when accepted) or kFailed (outcome()
-/// says why: kCancelled, kApproximate, kNoPath, kInputError, kError; result().message
-/// the details). A failed or cancelled request leaves the previously published plan (if
-/// any) in place: sample() keeps returning it, and planId() tells which plan it is.
+/// outcome() kExact or kOptimized, a certified plan; kApproximate or kNotCertified only
+/// when the request accepts them) or kFailed (outcome() says why: kNotCertified,
+/// kCancelled, kApproximate, kNoPath, kInputError, kError; result().message the details).
+/// A failed or cancelled request leaves the previously published plan (if any) in place:
+/// sample() keeps returning it, and planId() tells which plan it is.
 
 #include <atomic>
 #include <cstdint>
@@ -30,9 +35,11 @@
 #include <string>
 
 #include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/feedback_schedule.h"
 #include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/reference_trajectory.h"
-#include "rbsf/dynamics/tracking_controller.h"
+#include "rbsf/planner/certificate.h"
 #include "rbsf/planner/plan.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/trajopt/plan_optimizer.h"
@@ -49,14 +56,15 @@ enum class ControllerStatus : std::uint8_t {
 
 /// \brief How the last finished request ended.
 enum class PlanOutcome : std::uint8_t {
-  kNone,         ///< no request finished yet
-  kExact,        ///< planner reached the goal; its plan is published
-  kOptimized,    ///< and the optimiser refined it; the refined plan is published
-  kApproximate,  ///< the search ended away from the goal (published only when accepted)
-  kNoPath,       ///< the planner produced no path
-  kCancelled,    ///< cancel() stopped the request
-  kInputError,   ///< the problem or settings were refused (message names what)
-  kError         ///< anything else (message)
+  kNone,          ///< no request finished yet
+  kExact,         ///< planner reached the goal; its certified plan is published
+  kOptimized,     ///< and the optimiser refined it; the certified refined plan is published
+  kNotCertified,  ///< the plan failed its certificate (published only when accepted)
+  kApproximate,   ///< the search ended away from the goal (published only when accepted)
+  kNoPath,        ///< the planner produced no path
+  kCancelled,     ///< cancel() stopped the request
+  kInputError,    ///< the problem or settings were refused (message names what)
+  kError          ///< anything else (message)
 };
 
 /// \brief "idle", "planning", "ready", "failed"; "none", "exact", "optimized", ...
@@ -70,21 +78,23 @@ struct ReorientationRequest {
   ///        default differs from PlannerSettings' in one place: sample_steps = 1, a plan
   ///        sample (a reference knot) every simulator step, so that the reference passes
   ///        through every simulated state; with 10 ms knots the cubic between them strays
-  ///        ~0.3 mm from the simulated path, and the tracking PD reacting to that is enough to
-  ///        tip plans whose sliding phases end near the tolerance (plan_replay_test.cpp).
+  ///        ~0.3 mm from the simulated path, which a feedback law then answers.
   planner::PlannerSettings planner = [] {
     planner::PlannerSettings s;
     s.sample_steps = 1;
     return s;
   }();
-  /// \brief Refine the exact plan with rbsf::trajopt; the refined plan replaces the
-  ///        planner's only when the optimiser succeeds and its closed-loop replay is
-  ///        accepted (planner::verifyPlan with this controller's tracking gains and the
-  ///        request's goal tolerances), as plan-reorientation does; otherwise the
-  ///        planner's plan is published, outcome kExact, and result().message says why.
+  /// \brief Refine the exact plan with rbsf::trajopt; of the planner's plan and the refined
+  ///        one the plan with the better certificate is published (plan_refinement.h).
   bool optimize = false;
   trajopt::OptimizerSettings optimizer;  ///< its `cancel` is replaced as well
-  bool accept_approximate = false;       ///< publish a plan that ends away from the goal
+  /// \brief How the plan is certified (trials, seed, criteria); the trials run on the
+  ///        worker thread, on every core.
+  planner::CertificateSettings certificate;
+  bool accept_approximate = false;  ///< publish a plan that ends away from the goal
+  /// \brief Publish a plan that failed its certificate (outcome kNotCertified). Off: such
+  ///        a plan is kept in result() only; a cell should not run it.
+  bool accept_uncertified = false;
   /// \brief Called on the worker thread about once per second while searching.
   std::function<void(const planner::Progress&)> progress;
 };
@@ -92,8 +102,8 @@ struct ReorientationRequest {
 /// \brief What the last finished request produced (copied; not for the real-time loop).
 struct RequestResult {
   PlanOutcome outcome = PlanOutcome::kNone;
-  std::string message;         ///< why it failed or why optimisation was not used
-  planner::Plan plan;          ///< the plan (published or not); empty when none
+  std::string message;         ///< why it failed, or the certificate's verdict
+  planner::Plan plan;          ///< the plan (published or not) with its certificate
   double best_distance = 0.0;  ///< planner's best goal distance [tolerance units]
   std::uint64_t plan_id = 0;   ///< id of the published plan, 0 when not published
 };
@@ -101,11 +111,12 @@ struct RequestResult {
 /// \brief Controller facade for one cell (see the file comment for the threading rules).
 class ReorientationController {
  public:
-  /// \brief Load the cell file. \throws InputError naming the key or file.
+  /// \brief Load the cell file (its sensing section says which law runs).
+  /// \throws InputError naming the key or file.
   explicit ReorientationController(const std::string& cell_file,
-                                   const TrackingSettings& tracking = {});
+                                   const FeedbackSettings& feedback = {});
   /// \brief Use a cell built in code. \throws InputError when it is invalid.
-  explicit ReorientationController(Cell cell, const TrackingSettings& tracking = {});
+  explicit ReorientationController(Cell cell, const FeedbackSettings& feedback = {});
   /// \brief Cancels a running request and joins the worker.
   ~ReorientationController();
   ReorientationController(const ReorientationController&) = delete;
@@ -138,15 +149,19 @@ class ReorientationController {
   ///        Lock-free, allocation-free; safe from any thread while planning runs.
   bool sample(double t, ReferenceSample& out, std::uint64_t* plan_id = nullptr) const noexcept;
 
-  /// \brief Tracking input for the control period [t, t + h) (h: the plan's time step,
-  ///        1 ms by default) from the measured (q, v) at t: the tracking controller
-  ///        (tracking_controller.h) around q_ref(t), v_ref(t), with the feed-forward tau and
-  ///        phase of the period's midpoint t + h/2 (a segment starting at t is never missed
-  ///        by rounding; planner::replayPlan's closed loop computes the same input).
-  ///        Returns false and leaves `tau` untouched when no plan is published. `ref`
-  ///        receives the reference used. Lock-free, allocation-free.
-  bool computeTorque(double t, const VecQ& q, const VecQ& v, VecU& tau, ReferenceSample& ref,
-                     std::uint64_t* plan_id = nullptr) const noexcept;
+  /// \brief The input for the control period [t, t + h) (h: the plan's time step, 1 ms by
+  ///        default) from the joints measured at t (theta, l_1..l_m: tau order), by the
+  ///        control law of the published plan (control_law.h; part feedback when the cell
+  ///        senses the part, joint PD when not). The first call of track() or
+  ///        addPartPose() after a plan is published starts its law (the estimate at the
+  ///        plan's start, the joints as measured). Joints of the wrong size: false.
+  ///        Returns false and leaves `tau` untouched when no plan is published; `plan_id`
+  ///        receives the plan's id. One real-time thread only; lock-free, allocation-free.
+  bool track(double t, const VecU& joints, VecU& tau, std::uint64_t* plan_id = nullptr) noexcept;
+
+  /// \brief A pose of the part's frame measured at plan time `stamp` (when the sensor took
+  ///        it, not when it arrived); the next track() uses it. The loop thread of track().
+  void addPartPose(double stamp, const Pose& pose) noexcept;
 
   /// \brief Duration [s] and start configuration q0 of the published plan; false when none.
   bool publishedPlan(double& duration, VecQ& q0) const noexcept;

@@ -13,8 +13,16 @@
 /// plan's end), K the schedule's gain: a time-varying LQR on the planned mode's manifold
 /// when the cell senses the part, the joint PD of a cell that does not; xi the integral of
 /// the estimated part pose error (x, y, phi), accumulated only while no input is clamped
-/// and held within the schedule's integral_limit (anti-windup). sat clamps each
-/// input to the cell's limit (tau_theta to +-torque_limit [N m], tau_i to +-force_limit [N]).
+/// and held within the schedule's integral_limit (anti-windup). With part feedback the
+/// input change du = -K e - K_i xi is then projected onto the contact constraints of the
+/// schedule (forces inside cones shrunk by cone_margin, normal forces above a floor):
+///
+///   min (du' - du)^T R (du' - du)  s.t.  G du' >= c0 - C_x e,
+///
+/// R the LQR's input weights, solved by Hildreth's dual coordinate ascent (at most
+/// kQpSweeps sweeps; the last iterate when the rows cannot all be met). sat then clamps
+/// each input to the cell's limit (tau_theta to +-torque_limit [N m], tau_i to
+/// +-force_limit [N]).
 ///
 /// State estimate: an extended Kalman filter whose process model is the nominal simulator
 /// itself (the schedule's: the plan's cell and simulator settings, with its contact
@@ -25,9 +33,23 @@
 ///   part     at the sample's own time t_s the correction d = L_p (z - pose_hat(t_s))
 ///            (angle wrapped) is carried to the present through the steps since, each
 ///            d <- A_d d then d <- d - L_j H_j d (the joint updates since t_s saw the
-///            uncorrected estimate), and added to x_hat.
+///            uncorrected estimate), and added to x_hat; then the part is moved the least
+///            that closes its touching contacts' gaps, sticking contacts are re-anchored
+///            where they are, and the velocity is changed the M-least that keeps the
+///            contacts in their modes (touching ones closing at zero rate, sticking ones
+///            not slipping): a correction must not break loose in the model a contact
+///            that the cell holds (the model's contact then slides, with mu_k = 0, and
+///            its part runs away).
 /// The carrying is the prediction over the latency: a late pose still corrects the
-/// present. A sample older than the history (history_time) is dropped (counted).
+/// present. A sample older than the latency plus two sample periods is dropped (counted).
+///
+/// A cell that does not sense its part has no use for a model of it (unobserved, the
+/// model's part would drift off the fingers and corrupt the joints' prediction): its
+/// estimate is each joint's error from the reference, e, and rate, e', by the steady-state
+/// Kalman filter of a constant-rate error (alpha-beta; Kalata's tracking index
+/// lambda = joint_acceleration h^2 / joint noise):
+///   e <- e + h e',  r = y_j - Theta_ref,j - e,  e <- e + alpha r,  e' <- e' + beta / h r,
+/// and the part is taken to be where the plan has it.
 ///
 /// Real time: compute() and addPartPose() allocate nothing; the buffers, and the
 /// estimator's simulator workspace, are allocated at construction. One ControlLaw per
@@ -50,8 +72,9 @@ using VecX = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2 * kMaxConfig, 1>;
 /// \brief Estimator and law of one execution of a plan (file comment).
 class ControlLaw {
  public:
-  /// \param history_time how far back a part sample may be applied [s] (>= the latency).
-  explicit ControlLaw(const FeedbackSchedule& schedule, double history_time = 0.05);
+  /// \brief A law on `schedule`; a part sample is applied up to the sensor's latency plus
+  ///        two sample periods late (older ones are dropped).
+  explicit ControlLaw(const FeedbackSchedule& schedule);
 
   /// \brief Start a new execution: at the first compute() the estimate is the part at the
   ///        reference's start moved the least that puts it on the fingers as measured
@@ -63,7 +86,8 @@ class ControlLaw {
   void addPartPose(double stamp, const Pose& pose);
 
   /// \brief The input for [t, t + h) from the joints measured at t (tau order, m + 1
-  ///        entries). Calls are expected every h (missed periods are predicted over).
+  ///        entries). Calls are expected every h (missed periods are predicted over); a
+  ///        t earlier than the last call's starts a new run (reset()).
   ///        Allocation-free. \return true when an input was clamped to its limit.
   bool compute(double t, const VecU& joints, VecU& tau);
 
@@ -100,9 +124,16 @@ class ControlLaw {
   Entry& entry(long j) { return ring_[static_cast<std::size_t>(j % ring_.size())]; }
   void jointUpdate(int knot, const VecU& joints);
   void applyPartSample(const PartSample& s);
-  /// \brief Move the part of q the least that puts it on the fingers it starts on.
-  void settleOnFingers(VecQ& q);
+  /// \brief Move the part of q the least that closes the gaps of the contacts not
+  ///        separated in `modes`.
+  void closeGaps(VecQ& q, const ContactModes& modes);
+  /// \brief The M-least change of the estimate's velocity that keeps its contacts' modes:
+  ///        zero normal rate where touching, zero slip where sticking.
+  void keepContactVelocities();
   bool control(double t, int knot, const VecX& e, const Eigen::Vector3d& xi, VecU& tau);
+  bool computeJointOnly(double t, const VecU& joints, VecU& tau);
+  /// \brief The QP of the file comment on demand_ - tau_ff at knot k.
+  void keepContacts(int knot, const VecX& e, VecU& du);
 
   const FeedbackSchedule& schedule_;
   std::unique_ptr<SimulatorWorkspace> ws_;
@@ -114,6 +145,13 @@ class ControlLaw {
   long step_ = -1;  ///< index of the last computed step
   VecU demand_;
   VecX e_, d_;
+  VecU alpha_, beta_;  ///< joint-only estimator gains (file comment)
+  VecU input_scale_;   ///< R^-1/2: the LQR's tolerated input per entry
+  using VecK = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kMaxFingers, 1>;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kMaxFingers, 3 * kMaxFingers> qp_p_;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kMaxFingers, kMaxFingers + 1> qp_g_;
+  VecK qp_r_, qp_l_;
+  VecU ej_, dej_;  ///< joint-only estimate: joint errors and their rates
   Eigen::Vector3d xi_ = Eigen::Vector3d::Zero();  ///< integral of the part pose error
   ReferenceSample at_, mid_;
   std::uint64_t dropped_ = 0;

@@ -15,6 +15,11 @@
 /// its state manifold; over the knot the step map of h is A_d = I + hA + h^2 A^2 / 2,
 /// B_d = hB + h^2 AB / 2.
 ///
+/// Contact constraints (part_pose sensed): the mode's force map linearised at the knot,
+/// lambda ~ lambda_k + Lx e + Lu du, gives each touching contact a row f_n >= floor and
+/// each sticking contact two rows keeping f_t within cone_margin mu_s f_n; the law
+/// projects its input onto them (control_law.h).
+///
 /// LQR (part_pose sensed). Error e = x - x_ref in manifold coordinates z = P^T e, cost
 /// sum z^T P^T Q P z + du^T R du with Bryson weights Q = diag(1 / tolerated error^2) and
 /// R = diag(1 / (input_fraction x limit)^2); a backward Riccati recursion over every control
@@ -60,6 +65,8 @@ struct FeedbackSettings {
   double settle_time = 1.0;   ///< hold at rest after the plan's end [s]
   double horizon_tail = 1.0;  ///< Riccati horizon beyond the last knot [s]
   double touch_gap = 5e-4;    ///< a reference contact within this gap touches [m]
+  /// \brief The estimator's model counts a contact sliding only above this slip [m/s].
+  double estimator_slip_speed = 5e-3;
   /// \brief A contact is a constraint of the planned mode only when the reference presses
   ///        it with at least this fraction of the part's weight.
   double min_normal_force = 0.02;
@@ -73,6 +80,11 @@ struct FeedbackSettings {
   double base_rate = 0.2;             ///< theta' [rad/s]
   double stroke_speed = 0.05;         ///< l_i' [m/s]
   double input_fraction = 0.02;       ///< tolerated input, fraction of its limit
+  /// \brief The law keeps each sticking contact's predicted force inside its friction cone
+  ///        shrunk to cone_margin x mu_s, and each touching contact's normal force above
+  ///        contact_force_floor x the part's weight (part feedback only).
+  double cone_margin = 0.8;
+  double contact_force_floor = 0.01;
   /// \brief Integral action on the part's pose: the integral of its error is weighted as
   ///        an error of (position, angle) x integral_time [m s, rad s]; 0 turns it off.
   double integral_time = 0.5;
@@ -105,8 +117,14 @@ class FeedbackSchedule {
                    const SimulatorSettings& simulator, const FeedbackSettings& settings = {});
 
   const RbsfModel& model() const { return model_; }
-  /// \brief The nominal simulator (the plan's settings): the estimator's process model.
+  /// \brief The nominal simulator (the plan's settings): the planned modes' source.
   const Simulator& simulator() const { return simulator_; }
+  /// \brief The estimator's process model: the nominal simulator with its stick/slip and
+  ///        contact tolerances raised to what the measurements can tell apart
+  ///        (estimator_slip_speed, when the cell has friction; 10 x the stroke noise), so
+  ///        that noise in a correction does not break loose in the model a contact the
+  ///        cell holds.
+  const Simulator& estimatorSimulator() const { return estimator_; }
   const Sensing& sensing() const { return sensing_; }
   const FeedbackSettings& settings() const { return settings_; }
   double timeStep() const { return h_; }
@@ -132,6 +150,14 @@ class FeedbackSchedule {
   /// \brief Integral gain at knot k, (m + 1) x 3: du = -gain e - integralGain xi, xi the
   ///        integral of the part's pose error (x, y, phi) [m s, rad s]. Zero for joint PD.
   const Eigen::MatrixXd& integralGain(int k) const { return Ki_[k]; }
+  /// \brief Contact constraints of knot k on the input change du = tau - tau_ff:
+  ///        contactRows(k) du >= contactBound(k) - contactStateGain(k) e, e = x - x_ref,
+  ///        one row per touching contact (f_n >= floor) and two per sticking contact
+  ///        (cone_margin mu_s f_n -+ f_t >= 0), from the mode's force map lambda(x, tau)
+  ///        (mode_dynamics.h, Lx and Lu). Empty for joint PD.
+  const Eigen::MatrixXd& contactRows(int k) const { return Gc_[k]; }
+  const Eigen::VectorXd& contactBound(int k) const { return c0_[k]; }
+  const Eigen::MatrixXd& contactStateGain(int k) const { return Cx_[k]; }
   /// \brief Kalman gains at knot k: joints 2n x (m + 1), part 2n x 3 (empty if not sensed).
   const Eigen::MatrixXd& jointGain(int k) const { return Lj_[k]; }
   const Eigen::MatrixXd& partGain(int k) const { return Lp_[k]; }
@@ -141,11 +167,12 @@ class FeedbackSchedule {
  private:
   void computeLqr(const std::vector<Eigen::MatrixXd>& tangent);
   void computePd();
+  void addContactRows(const ModeLinearization& lin, const ContactModes& modes);
   void computeKalman();
   ContactModes plannedModes(double t, SimulatorWorkspace& ws) const;
 
   const RbsfModel& model_;
-  Simulator simulator_;
+  Simulator simulator_, estimator_;
   ReferenceTrajectory reference_;
   Sensing sensing_;
   double h_;
@@ -154,7 +181,8 @@ class FeedbackSchedule {
   double t0_ = 0.0;
   VecQ hold_q_;
   VecU hold_tau_;
-  std::vector<Eigen::MatrixXd> Ad_, Bd_, F_, K_, Ki_, Lj_, Lp_;
+  std::vector<Eigen::MatrixXd> Ad_, Bd_, F_, K_, Ki_, Lj_, Lp_, Gc_, Cx_;
+  std::vector<Eigen::VectorXd> c0_;
   std::vector<ContactModes> modes_;
 };
 

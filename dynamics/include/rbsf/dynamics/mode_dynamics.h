@@ -56,6 +56,8 @@ struct ModeLinearization {
   Eigen::MatrixXd tangent;  ///< 2n x r orthonormal basis of the manifold's tangent space
   Eigen::VectorXd vdot;     ///< v' at the linearisation point
   Eigen::VectorXd lambda;   ///< mode forces (rows of W) [N]
+  Eigen::MatrixXd Lx;       ///< d lambda / d(q, v), rows of W x 2n
+  Eigen::MatrixXd Lu;       ///< d lambda / d tau, rows of W x (m + 1), exact
 };
 
 /// \brief Smooth dynamics of one contact mode; immutable, one ModelData per thread.

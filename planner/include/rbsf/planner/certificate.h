@@ -12,8 +12,9 @@
 ///
 /// Reproducible: trial i draws from (seed, i) alone, so the certificate is the same bits
 /// for a seed whatever the number of threads; trials run on every core (threads = 0).
-/// The worst trial: a failed one before any success; among those alike, the largest
-/// max(position error / tolerance, angle error / tolerance) at the end, then the lowest
+/// The worst trial: a failed one before any success, a dropped one before any other
+/// failure (the earliest drop first); among the rest alike, the largest
+/// max(position error / tolerance, angle error / tolerance) at the end; then the lowest
 /// index.
 
 #include <atomic>

@@ -53,6 +53,14 @@ struct Certificate {
   TrialOutcome worst;               ///< the worst trial (certificate.h), index -1 when none
 };
 
+/// \brief The certificate as JSON text (the plan file's `certificate` object, plan.h).
+std::string certificateJsonText(const Certificate& certificate);
+
+/// \brief The worst trial in metres and degrees: "trial 7: ends 0.0135 m and 1.03 deg from
+///        the goal, moving 0.0088 m/s and 2.6 deg/s; left the planned path at t = 0.421 s
+///        (planned phase U); phases CPU" (and "dropped at t = ..." when it was).
+std::string worstTrialText(const Certificate& certificate);
+
 /// \brief The one-line verdict: "certified: 31/32 trials (97 %)" or "NOT certified: ...,
 ///        worst trial 7: <its failure>".
 std::string verdictText(const Certificate& certificate);

@@ -28,19 +28,21 @@
 /// | `optimization`  | only when the optimiser ran: `status` (Ipopt's name of its |
 /// |                 | return status), `iterations`, `solve_time` [s] (not with |
 /// |                 | --reproducible), `cost_before`, `cost_after` (effort integral |
-/// |                 | of tau^T W tau on the planner's / optimised plan), and |
-/// |                 | `message` (why it failed or was rejected) when not empty |
-/// | `replay`        | only when the plan was replayed (plan_replay.h): `closed_loop` |
-/// |                 | {`position_error` [m], `angle_error` [rad], `min_f_n` [N], |
-/// |                 | `phases`, `max_tracking_error` [rad or m], and when the part |
-/// |                 | left the planned path `departure_time` [s] and |
-/// |                 | `departure_phase`} and `open_loop` {the same without |
-/// |                 | `max_tracking_error`} |
-/// | `accepted`      | with `optimization` or `replay`: true when the optimised plan |
-/// |                 | passed the replay (plan_replay.h) and is the one in the file |
-/// | `planner_replay` | only when an optimised plan was not accepted: the same two |
-/// |                 | replays of the plan in the file (the planner's), and `accepted`, |
-/// |                 | whether that plan passes the same rule |
+/// |                 | of tau^T W tau on the planner's / optimised plan), `chosen` |
+/// |                 | (true: the plan in the file is the optimised one), |
+/// |                 | `refined_success_rate` (the optimised plan's certificate, when |
+/// |                 | it ran) and `message` (why it failed or was not chosen) |
+/// | `certificate`   | when the plan was certified (certificate.h): `law`, `trials`, |
+/// |                 | `successes`, `success_rate`, `required_rate`, `certified`, |
+/// |                 | `seed`, `criteria` {`position_tolerance` [m], `angle_tolerance` |
+/// |                 | [rad], `rest_speed` [m/s], `rest_angular_speed` [rad/s], |
+/// |                 | `settle_time` [s]}, the `sensing` and `uncertainty` used (cell |
+/// |                 | file keys), and the `worst` trial: `trial`, `success`, |
+/// |                 | `failure`, `position_error` [m], `angle_error` [rad], `speed` |
+/// |                 | [m/s], `angular_speed` [rad/s], `dropped` (and `dropped_time`), |
+/// |                 | `saturated_time` [s], `min_f_n` [N], `max_deviation` |
+/// |                 | [tolerance units], `phases`, and where it left the planned |
+/// |                 | path `departure_time` [s], `departure_phase` |
 ///
 /// CSV (writePlanCsv): one row per sample, the columns of trajectory_sample.h.
 /// Files are written to a temporary name and renamed; a plan with a NaN is refused.
@@ -79,28 +81,10 @@ struct OptimizationSummary {
   double solve_time = 0.0;   ///< [s]
   double cost_before = 0.0;  ///< effort integral of tau^T W tau on the planner's plan
   double cost_after = 0.0;   ///< and on the optimised one (trajopt's EffortCost)
-  std::string message;       ///< why it failed or was rejected, empty otherwise
-};
-
-/// \brief One replay of a plan in the simulator (plan file key `replay`).
-struct ReplayResult {
-  double position_error = 0.0;      ///< final COM distance to the goal [m]
-  double angle_error = 0.0;         ///< final |phi - phi_goal|, wrapped [rad]
-  double min_f_n = 0.0;             ///< least normal force over the replay [N]
-  std::string phases;               ///< phase sequence seen, runs merged, e.g. "PUPU"
-  double max_tracking_error = 0.0;  ///< closed loop only: max joint error [rad or m]
-  /// \brief First step time t_n [s] at which the part is farther from the plan's own pose
-  ///        at t_n than the replay's position or angle tolerance; -1 when it never is.
-  double departure_time = -1.0;
-  /// \brief The plan's phase letter (C, P or U) at departure_time; empty when none.
-  std::string departure_phase;
-};
-
-/// \brief Closed- and open-loop replays of a plan and the verdict.
-struct ReplaySummary {
-  bool ran = false;
-  ReplayResult closed_loop, open_loop;
-  bool accepted = false;
+  bool chosen = false;       ///< the plan in the file is the optimised one
+  /// \brief Success rate of the optimised plan's certificate; -1 when it was not certified.
+  double refined_success_rate = -1.0;
+  std::string message;  ///< why it failed or was not chosen, empty otherwise
 };
 
 /// \brief One point of the densely sampled trajectory (trajectory_sample.h).
@@ -124,9 +108,7 @@ struct Plan {
   std::vector<PlanSegment> segments;
   std::vector<PlanSample> samples;
   OptimizationSummary optimization;  ///< written when optimization.ran
-  ReplaySummary replay;              ///< written when replay.ran (with `accepted`)
-  /// \brief The kept planner's plan's own replay (written when planner_replay.ran).
-  ReplaySummary planner_replay;
+  Certificate certificate;           ///< written when certificate.ran
   /// \brief Largest |(q, v)| difference between the planner's tree states and the plan's
   ///        re-simulation at the segment ends (not written to files).
   double path_mismatch = 0.0;
@@ -142,8 +124,7 @@ struct Plan {
 using PhaseCounts = std::array<int, 3>;
 
 /// \brief The phase a segment is labelled with: the one most of its steps took, ties going
-///        to C, then P. The one rule for the planner's segments (simulateSegments) and for
-///        replays (plan_replay.h), so a plan replayed open loop shows its own labels.
+///        to C, then P (the planner's segments, simulateSegments).
 Phase majorityPhase(const PhaseCounts& steps);
 
 /// \brief Simulate `segments` from q0 at rest (fresh SimState), fill their `phase` and
@@ -152,6 +133,11 @@ Phase majorityPhase(const PhaseCounts& steps);
 std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ& q0,
                                          std::vector<PlanSegment>& segments, int sample_steps,
                                          std::vector<SimState>* ends = nullptr);
+
+/// \brief Phase letters of consecutive runs (phase, duration [s]): runs shorter than
+///        `min_run` dropped, then equal neighbours merged. When every run is short the
+///        longest one is kept (a sequence is never empty for a non-empty input).
+std::string filterPhaseRuns(const std::vector<std::pair<Phase, double>>& runs, double min_run);
 
 /// \brief "C", "P", "U"; throws InputError for anything else.
 Phase parsePhase(const std::string& text);

@@ -1,45 +1,49 @@
 #pragma once
 /// \file
-/// \brief The optimisation step of plan-reorientation and of the controller facade: optimise
-///        an exact plan, replay the result open and closed loop, and keep it only when the
-///        replay accepts it.
+/// \brief The optimisation step of plan-reorientation and of the controller facade:
+///        optimise an exact plan, certify the planner's plan and the optimised one
+///        (planner/certificate.h), and keep the one with the better certificate.
+///
+/// The order: the planner's plan is certified; the optimiser refines it and, on success,
+/// the refinement is certified; when that refinement is not certified, the optimiser runs
+/// once more with OptimizerSettings::min_slip_rate = retry_min_slip_rate (sliding contacts
+/// kept clearly sliding) and that refinement is certified too. The better certificate
+/// wins: more successes, then the smaller final error of its worst trial; on a tie the
+/// earlier candidate (the planner's plan first) is kept.
 
+#include <atomic>
 #include <string>
 
-#include "rbsf/planner/plan_replay.h"
+#include "rbsf/planner/certificate.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
 namespace rbsf::trajopt {
 
-/// \brief The plan to write and the verdict.
+/// \brief The plan to write and how it was chosen.
 struct RefineOutcome {
-  planner::Plan plan;  ///< the optimised plan if accepted, else the planner's, marked
-  bool accepted = false;
-  std::string reason;  ///< why not (Ipopt's failure or the failed replay criteria)
-  int attempts = 0;    ///< solves run (1, or 2 with the retry)
+  /// \brief The chosen plan with its `certificate` and the optimiser's `optimization`
+  ///        summary (of the chosen solve, else of the first; `chosen`, `message`).
+  planner::Plan plan;
+  bool refined = false;  ///< the chosen plan is an optimised one
+  std::string reason;    ///< why no optimised plan was chosen; empty when one was
+  int attempts = 0;      ///< solves run (1, or 2 with the retry)
+  /// \brief The planner's plan's certificate (also when an optimised plan is chosen).
+  planner::Certificate planner_certificate;
 };
 
-/// \brief How refinePlan tries.
+/// \brief How refinePlan tries and judges.
 struct RefineSettings {
-  /// \brief When the first refinement is not accepted, solve once more with
-  ///        OptimizerSettings::min_slip_rate = this [1/s] (0 or the optimiser's own value:
-  ///        no retry). A minimum slip rate keeps sliding contacts clearly sliding, which
-  ///        some plans need to replay their phases and which makes others infeasible
-  ///        (BENCHMARKS.md, "Forces held per interval"); so it is the second try.
+  /// \brief Retry with this minimum slip rate [1/s] when the first refinement is not
+  ///        certified (0 or the optimiser's own value: no retry).
   double retry_min_slip_rate = 0.1;
+  planner::CertificateSettings certificate;  ///< how each candidate is certified
 };
 
-/// \brief Optimise `plan` with `optimizer`; on success verify it (planner::verifyPlan);
-///        if not accepted, retry once as RefineSettings says (not after a cancel).
-///        Accepted: the refined plan with `optimization` (of the accepted solve; its
-///        message names the retry when that was the one), `replay`, accepted = true.
-///        Otherwise: the planner's plan with `optimization` of the first solve (message =
-///        the reason, both solves' when retried), the replay of the first optimised plan
-///        when it ran, accepted = false, and `planner_replay`: the planner's plan verified
-///        by the same rule (left out if that replay diverges). Every number in the
-///        summaries is finite (a non-finite one is reported in the reason and zeroed).
-RefineOutcome refinePlan(const PlanOptimizer& optimizer, const Simulator& simulator,
-                         const planner::Plan& plan, const planner::ReplaySettings& replay,
+/// \brief Optimise, certify and choose (file comment). Every number in the summaries is
+///        finite. A cancel (OptimizerSettings::cancel) stops after the current step: the
+///        planner's plan is returned, certified if that had finished.
+/// \throws InputError when the plan does not fit the optimiser's cell.
+RefineOutcome refinePlan(const PlanOptimizer& optimizer, const planner::Plan& plan,
                          const RefineSettings& settings = {});
 
 }  // namespace rbsf::trajopt

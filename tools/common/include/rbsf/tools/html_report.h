@@ -17,14 +17,23 @@
 
 namespace rbsf::tools {
 
+/// \brief The verdict box at the top of the page (a plan's certificate).
+struct ReportVerdict {
+  bool shown = false;    ///< false: no box
+  bool good = false;     ///< green (certified) or red (not)
+  std::string headline;  ///< e.g. "certified: 31/32 trials succeeded"
+  std::string detail;    ///< e.g. the worst trial
+};
+
 /// \brief The report page.
 class HtmlReport {
  public:
-  /// \brief `summary`: (key, value) rows shown above the pictures, in order.
+  /// \brief `summary`: (key, value) rows shown above the pictures, in order; `verdict`
+  ///        the box above them (id "verdict", class "verdict good" or "verdict bad").
   /// \throws std::invalid_argument as SvgAnimation does.
   HtmlReport(const RbsfModel& model, std::vector<TrajectorySample> frames,
              SvgAnimationOptions animation,
-             std::vector<std::pair<std::string, std::string>> summary);
+             std::vector<std::pair<std::string, std::string>> summary, ReportVerdict verdict = {});
 
   /// \brief The whole page.
   /// \throws std::runtime_error if a sample holds a NaN or an infinity.
@@ -37,6 +46,7 @@ class HtmlReport {
   std::vector<TrajectorySample> frames_;
   SvgAnimationOptions animation_;
   std::vector<std::pair<std::string, std::string>> summary_;
+  ReportVerdict verdict_;
 };
 
 }  // namespace rbsf::tools

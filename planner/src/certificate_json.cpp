@@ -1,0 +1,183 @@
+#include "certificate_json.h"
+
+#include <cmath>
+
+#include "rbsf/dynamics/errors.h"
+
+namespace rbsf::planner {
+
+using nlohmann::json;
+
+namespace {
+
+json pair(double a, double b) { return json::array({a, b}); }
+
+/// Strict reads with messages "<where>.<key> ...".
+struct Reader {
+  std::string where;
+
+  const json& need(const json& o, const char* key) const {
+    if (!o.is_object() || !o.contains(key)) throw InputError(where + "." + key + " is missing");
+    return o.at(key);
+  }
+  double num(const json& o, const char* key) const {
+    const json& v = need(o, key);
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
+      throw InputError(where + "." + key + " must be a finite number");
+    return v.get<double>();
+  }
+  bool boolean(const json& o, const char* key) const {
+    const json& v = need(o, key);
+    if (!v.is_boolean()) throw InputError(where + "." + key + " must be true or false");
+    return v.get<bool>();
+  }
+  std::string text(const json& o, const char* key) const {
+    const json& v = need(o, key);
+    if (!v.is_string()) throw InputError(where + "." + key + " must be a string");
+    return v.get<std::string>();
+  }
+  long integer(const json& o, const char* key, long lo, long hi) const {
+    const json& v = need(o, key);
+    if (!v.is_number_integer() || v.get<long>() < lo || v.get<long>() > hi)
+      throw InputError(where + "." + key + " must be an integer in [" + std::to_string(lo) + ", " +
+                       std::to_string(hi) + "]");
+    return v.get<long>();
+  }
+  std::pair<double, double> pairOf(const json& o, const char* key) const {
+    const json& v = need(o, key);
+    if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
+      throw InputError(where + "." + key + " must be a list of 2 numbers");
+    return {v[0].get<double>(), v[1].get<double>()};
+  }
+  Reader sub(const char* key) const { return {where + "." + key}; }
+};
+
+}  // namespace
+
+json certificateJson(const Certificate& c) {
+  const PartPoseSensing& pp = c.sensing.part_pose;
+  json sensing = {
+      {"joints", {{"noise", pair(c.sensing.joints.angle_noise, c.sensing.joints.stroke_noise)}}}};
+  if (pp.present)
+    sensing["part_pose"] = {{"rate", pp.rate},
+                            {"latency", pp.latency},
+                            {"noise", pair(pp.position_noise, pp.angle_noise)}};
+  else
+    sensing["part_pose"] = "none";
+  const Uncertainty& u = c.uncertainty;
+  const TrialOutcome& w = c.worst;
+  json worst = {{"trial", w.index},
+                {"success", w.success},
+                {"failure", w.failure},
+                {"position_error", w.position_error},
+                {"angle_error", w.angle_error},
+                {"speed", w.speed},
+                {"angular_speed", w.angular_speed},
+                {"dropped", w.dropped},
+                {"saturated_time", w.saturated_time},
+                {"min_f_n", w.min_f_n},
+                {"max_deviation", w.max_deviation},
+                {"phases", w.phases}};
+  if (w.dropped) worst["dropped_time"] = w.dropped_time;
+  if (w.departure_time >= 0.0) {
+    worst["departure_time"] = w.departure_time;
+    worst["departure_phase"] = w.departure_phase;
+  }
+  return {{"law", c.law},
+          {"trials", c.trials},
+          {"successes", c.successes},
+          {"success_rate", c.success_rate},
+          {"required_rate", c.required_rate},
+          {"certified", c.certified},
+          {"seed", c.seed},
+          {"criteria",
+           {{"position_tolerance", c.position_tolerance},
+            {"angle_tolerance", c.angle_tolerance},
+            {"rest_speed", c.rest_speed},
+            {"rest_angular_speed", c.rest_angular_speed},
+            {"settle_time", c.settle_time}}},
+          {"sensing", sensing},
+          {"uncertainty",
+           {{"mass", u.mass},
+            {"inertia", u.inertia},
+            {"com", u.com},
+            {"static_friction", u.static_friction},
+            {"kinetic_friction", pair(u.kinetic_friction_min, u.kinetic_friction_max)},
+            {"initial_position", u.initial_position},
+            {"initial_angle", u.initial_angle},
+            {"actuator_gain", u.actuator_gain}}},
+          {"worst", worst}};
+}
+
+Certificate readCertificateJson(const json& j, const std::string& where) {
+  const Reader rd{where};
+  Certificate c;
+  c.ran = true;
+  c.law = rd.text(j, "law");
+  c.trials = static_cast<int>(rd.integer(j, "trials", 1, 100000));
+  c.successes = static_cast<int>(rd.integer(j, "successes", 0, c.trials));
+  c.success_rate = rd.num(j, "success_rate");
+  c.required_rate = rd.num(j, "required_rate");
+  c.certified = rd.boolean(j, "certified");
+  const json& seed = rd.need(j, "seed");
+  if (!seed.is_number_unsigned()) throw InputError(where + ".seed must be an unsigned integer");
+  c.seed = seed.get<std::uint64_t>();
+  const Reader cr = rd.sub("criteria");
+  const json& crit = rd.need(j, "criteria");
+  c.position_tolerance = cr.num(crit, "position_tolerance");
+  c.angle_tolerance = cr.num(crit, "angle_tolerance");
+  c.rest_speed = cr.num(crit, "rest_speed");
+  c.rest_angular_speed = cr.num(crit, "rest_angular_speed");
+  c.settle_time = cr.num(crit, "settle_time");
+  const Reader sr = rd.sub("sensing");
+  const json& sensing = rd.need(j, "sensing");
+  std::tie(c.sensing.joints.angle_noise, c.sensing.joints.stroke_noise) =
+      sr.sub("joints").pairOf(sr.need(sensing, "joints"), "noise");
+  const json& pose = sr.need(sensing, "part_pose");
+  PartPoseSensing& pp = c.sensing.part_pose;
+  pp.present = !(pose.is_string() && pose.get<std::string>() == "none");
+  if (pp.present) {
+    const Reader pr = sr.sub("part_pose");
+    pp.rate = pr.num(pose, "rate");
+    pp.latency = pr.num(pose, "latency");
+    std::tie(pp.position_noise, pp.angle_noise) = pr.pairOf(pose, "noise");
+  }
+  const Reader ur = rd.sub("uncertainty");
+  const json& u = rd.need(j, "uncertainty");
+  Uncertainty& un = c.uncertainty;
+  un.mass = ur.num(u, "mass");
+  un.inertia = ur.num(u, "inertia");
+  un.com = ur.num(u, "com");
+  un.static_friction = ur.num(u, "static_friction");
+  std::tie(un.kinetic_friction_min, un.kinetic_friction_max) = ur.pairOf(u, "kinetic_friction");
+  un.initial_position = ur.num(u, "initial_position");
+  un.initial_angle = ur.num(u, "initial_angle");
+  un.actuator_gain = ur.num(u, "actuator_gain");
+  const Reader wr = rd.sub("worst");
+  const json& w = rd.need(j, "worst");
+  TrialOutcome& o = c.worst;
+  o.index = static_cast<int>(wr.integer(w, "trial", -1, c.trials - 1));
+  o.success = wr.boolean(w, "success");
+  o.failure = wr.text(w, "failure");
+  o.position_error = wr.num(w, "position_error");
+  o.angle_error = wr.num(w, "angle_error");
+  o.speed = wr.num(w, "speed");
+  o.angular_speed = wr.num(w, "angular_speed");
+  o.dropped = wr.boolean(w, "dropped");
+  if (o.dropped) o.dropped_time = wr.num(w, "dropped_time");
+  o.saturated_time = wr.num(w, "saturated_time");
+  o.min_f_n = wr.num(w, "min_f_n");
+  o.max_deviation = wr.num(w, "max_deviation");
+  o.phases = wr.text(w, "phases");
+  if (w.contains("departure_time")) {
+    o.departure_time = wr.num(w, "departure_time");
+    o.departure_phase = wr.text(w, "departure_phase");
+  }
+  return c;
+}
+
+std::string certificateJsonText(const Certificate& certificate) {
+  return certificateJson(certificate).dump(1) + "\n";
+}
+
+}  // namespace rbsf::planner
