@@ -42,6 +42,6 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/rbsfConfigVersion.cmake
 install(FILES ${PROJECT_BINARY_DIR}/rbsfConfig.cmake ${PROJECT_BINARY_DIR}/rbsfConfigVersion.cmake
               ${PROJECT_SOURCE_DIR}/cmake/rbsf_ompl.cmake
         DESTINATION ${RBSF_CMAKE_DIR})
-install(TARGETS rbsf-analyze plan-reorientation rbsf-simulate
+install(TARGETS rbsf-analyze plan-reorientation rbsf-simulate rbsf-replay
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/cells/ DESTINATION ${CMAKE_INSTALL_DATADIR}/rbsf/cells)

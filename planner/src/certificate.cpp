@@ -80,6 +80,20 @@ std::string worstTrialText(const Certificate& c) {
   return buf;
 }
 
+std::string certificateReportText(const Certificate& c) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "certificate (%s, %d trials, seed %llu): %s\n", c.law.c_str(),
+                c.trials, static_cast<unsigned long long>(c.seed),
+                c.certified ? "CERTIFIED" : "NOT CERTIFIED");
+  std::string text = buf;
+  std::snprintf(buf, sizeof buf, "  %d/%d trials succeeded (%.0f %%, %.0f %% required)\n",
+                c.successes, c.trials, 100.0 * c.success_rate, 100.0 * c.required_rate);
+  text += buf;
+  text += "  worst " + worstTrialText(c) + "\n";
+  if (c.worst.index >= 0 && !c.worst.success) text += "  it failed: " + c.worst.failure + "\n";
+  return text;
+}
+
 Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateSettings& s,
                     std::vector<TrialOutcome>* all, const std::atomic<bool>* cancel) {
   checkSettings(model, plan, s);

@@ -57,12 +57,7 @@ void printOptimisation(const trajopt::RefineOutcome& r) {
 
 /// The certificate of the plan written: verdict, law and worst trial, in metres and degrees.
 void printCertificate(const planner::Certificate& c) {
-  std::printf("certificate (%s, %d trials, seed %llu): %s\n", c.law.c_str(), c.trials,
-              static_cast<unsigned long long>(c.seed), c.certified ? "CERTIFIED" : "NOT CERTIFIED");
-  std::printf("  %d/%d trials succeeded (%.0f %%, %.0f %% required)\n", c.successes, c.trials,
-              100.0 * c.success_rate, 100.0 * c.required_rate);
-  std::printf("  worst %s\n", planner::worstTrialText(c).c_str());
-  if (!c.worst.success) std::printf("  it failed: %s\n", c.worst.failure.c_str());
+  std::fputs(planner::certificateReportText(c).c_str(), stdout);
 }
 
 int run(int argc, char** argv) {

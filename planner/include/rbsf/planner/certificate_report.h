@@ -61,6 +61,11 @@ std::string certificateJsonText(const Certificate& certificate);
 ///        (planned phase U); phases CPU" (and "dropped at t = ..." when it was).
 std::string worstTrialText(const Certificate& certificate);
 
+/// \brief The report a tool prints: "certificate (<law>, <N> trials, seed <S>): CERTIFIED" or
+///        "NOT CERTIFIED", the share of successes, the worst trial (worstTrialText) and,
+///        when it failed, why. Lines end in newlines.
+std::string certificateReportText(const Certificate& certificate);
+
 /// \brief The one-line verdict: "certified: 31/32 trials (97 %)" or "NOT certified: ...,
 ///        worst trial 7: <its failure>".
 std::string verdictText(const Certificate& certificate);
