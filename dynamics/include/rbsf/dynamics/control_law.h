@@ -19,8 +19,8 @@
 ///
 ///   min (du' - du)^T R (du' - du)  s.t.  G du' >= c0 - C_x e,
 ///
-/// R the LQR's input weights, solved by Hildreth's dual coordinate ascent (at most
-/// kQpSweeps sweeps; the last iterate when the rows cannot all be met). sat then clamps
+/// R the LQR's input weights, by a few sweeps of Hildreth's dual coordinate ascent
+/// (kQpSweeps; the last iterate when the rows cannot all be met). sat then clamps
 /// each input to the cell's limit (tau_theta to +-torque_limit [N m], tau_i to
 /// +-force_limit [N]).
 ///
