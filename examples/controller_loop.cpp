@@ -116,22 +116,14 @@ int run(int argc, char** argv) {
   request.problem.start_theta = parseAngle(theta_text, "--start-theta");
   request.planner.time_limit = parseNumber(limit_text, "--time-limit");
   if (!(request.planner.time_limit > 0.0)) throw InputError("--time-limit: must be positive");
-  const double seed = parseNumber(seed_text, "--seed");
-  if (seed < 1 || seed > 4294967295.0 || seed != std::floor(seed))
-    throw InputError("--seed: must be an integer in 1..4294967295 (got " + seed_text + ")");
-  request.planner.seed = static_cast<std::uint32_t>(seed);
+  request.planner.seed =
+      static_cast<std::uint32_t>(parseInteger(seed_text, "--seed", 1, 4294967295LL));
   const double settle = parseNumber(settle_text, "--settle");
   if (!(settle >= 0.0 && settle <= 60.0)) throw InputError("--settle: must be in [0, 60] s");
-  const double trials = parseNumber(trials_text, "--trials");
-  if (!(trials >= 1 && trials <= 100000 && trials == std::floor(trials)))
-    throw InputError("--trials: must be an integer in 1..100000 (got " + trials_text + ")");
-  request.certificate.trials = static_cast<int>(trials);
+  request.certificate.trials = static_cast<int>(parseInteger(trials_text, "--trials", 1, 100000));
   request.accept_uncertified = accept_uncertified;
   request.optimize = optimize;
-  const double knots = parseNumber(knots_text, "--knots");
-  if (!(knots >= 2 && knots <= 2000 && knots == std::floor(knots)))
-    throw InputError("--knots: must be an integer in 2..2000 (got " + knots_text + ")");
-  request.optimizer.knots = static_cast<int>(knots);
+  request.optimizer.knots = static_cast<int>(parseInteger(knots_text, "--knots", 2, 2000));
 
   FeedbackSettings feedback;
   feedback.settle_time = settle;

@@ -51,7 +51,6 @@ int ModeDynamics::constraintColumns(const ContactModes& modes, const ModelData& 
 void ModeDynamics::acceleration(const VecQ& q, const VecQ& v, const VecU& tau,
                                 const ContactModes& modes, ModelData& data, VecQ& vdot,
                                 Eigen::VectorXd* lambda) const {
-  const int m = model_.numFingers();
   model_.updateContacts(q, data);
   model_.velocityProducts(q, v, data);
   model_.bias(q, v, data.bias);
@@ -66,21 +65,7 @@ void ModeDynamics::acceleration(const VecQ& q, const VecQ& v, const VecU& tau,
     if (lambda) lambda->resize(0);
     return;
   }
-  // Force columns: a sliding contact's normal force drags mu_k f_n against its slip.
-  N = W;
-  const double mu_k = model_.cell().friction.mu_kinetic;
-  if (mu_k > 0.0) {
-    int c = 0;
-    for (int i = 0; i < m; ++i) {
-      if (modes[i] == ContactMode::kSeparated) continue;
-      if (modes[i] == ContactMode::kSlide) {
-        const double s = data.T.col(i).dot(v);
-        const double sgn = s > 0.0 ? 1.0 : s < 0.0 ? -1.0 : 0.0;
-        N.col(c) -= mu_k * sgn * data.T.col(i);
-      }
-      ++c;
-    }
-  }
+  forceColumns(modes, data, v, W, N);
   model_.applyMassInverse(q, N);  // N <- M^-1 N
   MatRRd D = W.transpose() * N;
   const double eps = regularization_ * std::max(D.diagonal().cwiseAbs().maxCoeff(), 1e-300);
@@ -89,6 +74,23 @@ void ModeDynamics::acceleration(const VecQ& q, const VecQ& v, const VecU& tau,
   const VecR lam = D.partialPivLu().solve(rhs);
   vdot.noalias() += N * lam;
   if (lambda) *lambda = lam;
+}
+
+void ModeDynamics::forceColumns(const ContactModes& modes, const ModelData& data, const VecQ& v,
+                                const MatQR& W, MatQR& N) const {
+  // A sliding contact's normal force drags mu_k f_n against its slip.
+  N = W;
+  const double mu_k = model_.cell().friction.mu_kinetic;
+  if (!(mu_k > 0.0)) return;
+  int c = 0;
+  for (int i = 0; i < model_.numFingers(); ++i) {
+    if (modes[i] == ContactMode::kSeparated) continue;
+    if (modes[i] == ContactMode::kSlide) {
+      const double s = data.T.col(i).dot(v);
+      N.col(c) -= mu_k * (s > 0.0 ? 1.0 : s < 0.0 ? -1.0 : 0.0) * data.T.col(i);
+    }
+    ++c;
+  }
 }
 
 ModeLinearization ModeDynamics::linearize(const VecQ& q, const VecQ& v, const VecU& tau,
@@ -140,19 +142,8 @@ ModeLinearization ModeDynamics::linearize(const VecQ& q, const VecQ& v, const Ve
   Eigen::MatrixXd dvdf = Minv;  // n x n: response of v' to a generalized force
   if (k > 0) {
     // The same D as acceleration(): rebuild it once at the nominal point.
-    MatQR N = W;
-    const double mu_k = model_.cell().friction.mu_kinetic;
-    if (mu_k > 0.0) {
-      int c = 0;
-      for (int i = 0; i < m; ++i) {
-        if (modes[i] == ContactMode::kSeparated) continue;
-        if (modes[i] == ContactMode::kSlide) {
-          const double s = data.T.col(i).dot(v);
-          N.col(c) -= mu_k * (s > 0.0 ? 1.0 : s < 0.0 ? -1.0 : 0.0) * data.T.col(i);
-        }
-        ++c;
-      }
-    }
+    MatQR N;
+    forceColumns(modes, data, v, W, N);
     model_.applyMassInverse(q, N);
     Eigen::MatrixXd D = W.transpose() * N;
     const double eps = regularization_ * std::max(D.diagonal().cwiseAbs().maxCoeff(), 1e-300);

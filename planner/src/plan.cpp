@@ -81,15 +81,8 @@ std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ&
   SimulatorWorkspace ws(m);
   std::vector<PlanSample> samples;
   auto record = [&](const SimState& at, const VecU& tau, const StepReport& report, Phase phase) {
-    PlanSample s;
-    s.t = at.t;
-    s.q = at.q;
-    s.v = at.v;
-    s.tau = tau;
-    s.f_n = VecC(m);
-    for (int i = 0; i < m; ++i) s.f_n[i] = report.contacts[i].f_n;
-    s.phase = phase;
-    samples.push_back(std::move(s));
+    samples.push_back(trajectorySample(at, report, tau));
+    samples.back().phase = phase;
   };
   std::vector<long> steps;
   std::vector<VecU> taus;

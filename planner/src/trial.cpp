@@ -139,17 +139,7 @@ TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const 
   };
   auto observe = [&](const SimState& now, const StepReport& report, const VecU& tau, long n) {
     const double t = static_cast<double>(n + 1) * h;
-    if (trace) {
-      TrajectorySample smp;
-      smp.t = t;
-      smp.q = now.q;
-      smp.v = now.v;
-      smp.tau = tau;
-      smp.f_n.resize(m);
-      for (int i = 0; i < m; ++i) smp.f_n[i] = report.contacts[i].f_n;
-      smp.phase = report.phase;
-      trace->push_back(std::move(smp));
-    }
+    if (trace) trace->push_back(trajectorySample(now, report, tau));
     for (int i = 0; i < m; ++i)
       if (report.contacts[i].mode != ContactMode::kSeparated)
         min_fn = std::min(min_fn, report.contacts[i].f_n);

@@ -49,11 +49,7 @@ struct Options {
 };
 
 int positiveInt(const std::string& text, const std::string& what, int most) {
-  const double v = tools::parseNumber(text, what);
-  if (v < 1 || v > most || v != std::floor(v))
-    throw InputError(what + ": must be an integer in 1.." + std::to_string(most) + " (got " + text +
-                     ")");
-  return static_cast<int>(v);
+  return static_cast<int>(tools::parseInteger(text, what, 1, most));
 }
 
 std::vector<std::string> parsePlanners(const std::string& text) {

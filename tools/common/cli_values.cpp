@@ -142,6 +142,14 @@ VecQ parseState(std::string_view text, std::string_view what, int m, bool veloci
 
 double parseNumber(std::string_view text, std::string_view what) { return number(text, what); }
 
+long long parseInteger(std::string_view text, std::string_view what, long long lo, long long hi) {
+  const double v = number(text, what);
+  if (!(v >= static_cast<double>(lo) && v <= static_cast<double>(hi) && v == std::floor(v)))
+    throw InputError(std::string(what) + ": must be an integer in " + std::to_string(lo) + ".." +
+                     std::to_string(hi) + " (got " + std::string(text) + ")");
+  return static_cast<long long>(v);
+}
+
 double parseAngle(std::string_view text, std::string_view what) { return angle(text, what); }
 
 std::vector<double> parseVector(std::string_view text, std::string_view what,

@@ -126,36 +126,22 @@ int run(int argc, char** argv) {
   settings.decisive_modes.enabled = !o.no_decisive_modes;
   settings.time_limit = parseNumber(o.time_limit, "--time-limit");
   if (settings.time_limit <= 0.0) throw InputError("--time-limit: must be positive");
-  const double seed = parseNumber(o.seed, "--seed");
-  if (seed < 1 || seed > 4294967295.0 || seed != std::floor(seed))
-    throw InputError("--seed: must be an integer in 1..4294967295 (got " + o.seed + ")");
-  settings.seed = static_cast<std::uint32_t>(seed);
+  settings.seed = static_cast<std::uint32_t>(parseInteger(o.seed, "--seed", 1, 4294967295LL));
   trajopt::OptimizerSettings opt_settings;
-  const double knots = parseNumber(o.knots, "--knots");
-  if (knots < 2 || knots > 100000 || knots != std::floor(knots))
-    throw InputError("--knots: must be an integer in 2..100000 (got " + o.knots + ")");
-  opt_settings.knots = static_cast<int>(knots);
+  opt_settings.knots = static_cast<int>(parseInteger(o.knots, "--knots", 2, 100000));
   opt_settings.max_solve_time = parseNumber(o.optimize_time_limit, "--optimize-time-limit");
   if (!(opt_settings.max_solve_time > 0.0))
     throw InputError("--optimize-time-limit: must be positive (got " + o.optimize_time_limit + ")");
-  const double iterations = parseNumber(o.optimize_iterations, "--optimize-iterations");
-  if (iterations < 1 || iterations > 1e6 || iterations != std::floor(iterations))
-    throw InputError("--optimize-iterations: must be an integer in 1..1000000 (got " +
-                     o.optimize_iterations + ")");
-  opt_settings.max_iterations = static_cast<int>(iterations);
+  opt_settings.max_iterations =
+      static_cast<int>(parseInteger(o.optimize_iterations, "--optimize-iterations", 1, 1000000));
   opt_settings.tolerance = parseNumber(o.optimize_tolerance, "--optimize-tolerance");
   if (!(opt_settings.tolerance > 0.0 && opt_settings.tolerance <= 1.0))
     throw InputError("--optimize-tolerance: must be in (0, 1] (got " + o.optimize_tolerance + ")");
   trajopt::RefineSettings refine;
   planner::CertificateSettings& certificate = refine.certificate;
-  const double trials = parseNumber(o.trials, "--trials");
-  if (trials < 1 || trials > 100000 || trials != std::floor(trials))
-    throw InputError("--trials: must be an integer in 1..100000 (got " + o.trials + ")");
-  certificate.trials = static_cast<int>(trials);
-  const double trial_seed = parseNumber(o.trial_seed, "--trial-seed");
-  if (trial_seed < 1 || trial_seed > 9007199254740992.0 || trial_seed != std::floor(trial_seed))
-    throw InputError("--trial-seed: must be a positive integer (got " + o.trial_seed + ")");
-  certificate.seed = static_cast<std::uint64_t>(trial_seed);
+  certificate.trials = static_cast<int>(parseInteger(o.trials, "--trials", 1, 100000));
+  certificate.seed =
+      static_cast<std::uint64_t>(parseInteger(o.trial_seed, "--trial-seed", 1, 1LL << 53));
   planner::Problem problem;
   problem.start = parsePose(o.start, "--start");
   problem.goal = parsePose(o.goal, "--goal");

@@ -53,14 +53,8 @@ int run(int argc, char** argv) {
   parseCommandLine(app, argc, argv);
 
   planner::CertificateSettings settings;
-  const double trials = parseNumber(trials_text, "--trials");
-  if (trials < 1 || trials > 100000 || trials != std::floor(trials))
-    throw InputError("--trials: must be an integer in 1..100000 (got " + trials_text + ")");
-  settings.trials = static_cast<int>(trials);
-  const double seed = parseNumber(seed_text, "--seed");
-  if (seed < 1 || seed > 9007199254740992.0 || seed != std::floor(seed))
-    throw InputError("--seed: must be a positive integer (got " + seed_text + ")");
-  settings.seed = static_cast<std::uint64_t>(seed);
+  settings.trials = static_cast<int>(parseInteger(trials_text, "--trials", 1, 100000));
+  settings.seed = static_cast<std::uint64_t>(parseInteger(seed_text, "--seed", 1, 1LL << 53));
   settings.open_loop = open_loop;
   if (!out.empty()) checkWritable(out, "--out");
   if (!csv.empty()) checkWritable(csv, "--csv");

@@ -186,7 +186,6 @@ int run(int argc, char** argv) {
   SimulatorWorkspace ws(m);
   SimState state(q0, VecQ::Zero(m + 4));
   Summary summary;
-  TrajectorySample sample;
   std::vector<TrajectorySample> frames;  // for --svg
   const long frame_stride = std::max(1L, std::lround(kSvgFrameTime / h));
   std::vector<VecU> taus;
@@ -200,13 +199,7 @@ int run(int argc, char** argv) {
                   throw std::runtime_error(
                       "the simulation diverged at t = " + std::to_string(now.t) + " s");
                 summary.add(report, now.t, m);
-                sample.t = now.t;
-                sample.q = now.q;
-                sample.v = now.v;
-                sample.tau = tau;
-                sample.f_n.resize(m);
-                for (int i = 0; i < m; ++i) sample.f_n[i] = report.contacts[i].f_n;
-                sample.phase = report.phase;
+                const TrajectorySample sample = trajectorySample(now, report, tau);
                 if (writer) writer->add(sample);
                 if (!o.svg.empty()) {
                   if (frames.empty()) {  // t = 0: the start at rest, with the first step's forces

@@ -82,6 +82,9 @@ class ModeDynamics {
  private:
   /// \brief The constraint columns W (rows of the mode) at the contacts in `data`.
   int constraintColumns(const ContactModes& modes, const ModelData& data, MatQR& W, VecR* h) const;
+  /// \brief The force columns N of the file comment for the constraint columns W.
+  void forceColumns(const ContactModes& modes, const ModelData& data, const VecQ& v, const MatQR& W,
+                    MatQR& N) const;
 
   const RbsfModel& model_;
   double regularization_;

@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/trajectory_sample.h"
 
 namespace rbsf {
 
@@ -32,6 +34,22 @@ long rollout(const Simulator& simulator, SimState& state, long steps, SimulatorW
       break;
   }
   return n;
+}
+
+/// \brief The sample of a step (trajectory_sample.h): the state after it, the input held
+///        over it, its contacts' normal forces and its phase.
+inline TrajectorySample trajectorySample(const SimState& state, const StepReport& report,
+                                         const VecU& tau) {
+  const int m = static_cast<int>(state.q.size()) - layout::configDim(0);
+  TrajectorySample s;
+  s.t = state.t;
+  s.q = state.q;
+  s.v = state.v;
+  s.tau = tau;
+  s.f_n.resize(m);
+  for (int i = 0; i < m; ++i) s.f_n[i] = report.contacts[i].f_n;
+  s.phase = report.phase;
+  return s;
 }
 
 /// \brief Inputs held over whole numbers of steps, one segment after the other: the

@@ -24,6 +24,10 @@ namespace rbsf::tools {
 /// \brief A finite number.
 double parseNumber(std::string_view text, std::string_view what);
 
+/// \brief An integer in [lo, hi] (|lo|, |hi| <= 2^53): "<what>: must be an integer in
+///        lo..hi (got <text>)" otherwise.
+long long parseInteger(std::string_view text, std::string_view what, long long lo, long long hi);
+
 /// \brief An angle in radians: "1.2" (radians), "1.2rad" or "30deg" (converted).
 double parseAngle(std::string_view text, std::string_view what);
 
