@@ -9,9 +9,7 @@ void forwardDynamicsU(const RbsfModel& model, const VecQ& q, const VecQ& v, cons
   model.updateContacts(q, data);
   model.velocityProducts(q, v, data);
   model.bias(q, v, data.bias);
-  model.generalizedInput(tau, data.free_acc);
-  data.free_acc -= data.bias;
-  model.applyMassInverse(q, data.free_acc);
+  model.freeAcceleration(q, tau, data.bias, data.free_acc);
   data.MinvG1 = data.G1;
   model.applyMassInverse(q, data.MinvG1);
   data.A.noalias() = data.G1.transpose() * data.MinvG1;

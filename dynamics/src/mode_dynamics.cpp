@@ -54,9 +54,7 @@ void ModeDynamics::acceleration(const VecQ& q, const VecQ& v, const VecU& tau,
   model_.updateContacts(q, data);
   model_.velocityProducts(q, v, data);
   model_.bias(q, v, data.bias);
-  model_.generalizedInput(tau, data.free_acc);
-  data.free_acc -= data.bias;
-  model_.applyMassInverse(q, data.free_acc);
+  model_.freeAcceleration(q, tau, data.bias, data.free_acc);
   vdot = data.free_acc;
   MatQR W, N;
   VecR h;

@@ -126,8 +126,14 @@ void RbsfModel::bias(const VecQ& q, const VecQ& v, VecQ& Q) const {
   Q[kTheta] = q_theta;
 }
 
+void RbsfModel::freeAcceleration(const VecQ& q, const VecU& tau, const VecQ& Q, VecQ& a) const {
+  generalizedInput(tau, a);
+  a -= Q;
+  applyMassInverse(q, a);
+}
+
 void RbsfModel::generalizedInput(const VecU& tau, VecQ& u) const {
-  u.setZero(m_ + 4);
+  u.setZero(layout::configDim(m_));
   for (int j = 0; j < m_ + 1; ++j) u[layout::inputToConfig(j)] = tau[j];
 }
 

@@ -221,9 +221,7 @@ void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws,
   model_.updateContacts(state.q, d);
   if (settings_.curvature_terms) model_.velocityProducts(state.q, state.v, d);
   model_.bias(state.q, state.v, d.bias);
-  model_.generalizedInput(tau, ws.acc);
-  ws.acc -= d.bias;
-  model_.applyMassInverse(state.q, ws.acc);
+  model_.freeAcceleration(state.q, tau, d.bias, ws.acc);
   ws.v_free = state.v + h * ws.acc;
 
   const int nc = assembleRows(state, ws);

@@ -13,7 +13,7 @@ namespace {
 struct RowSystem {
   Eigen::MatrixXd N;      // (m+4) x rows
   Eigen::MatrixXd MinvN;  // M^-1 N
-  Eigen::VectorXd free;   // M^-1 (u - Q)
+  VecQ free;              // M^-1 (u - Q)
   Eigen::MatrixXd K;      // N^T M^-1 N
   Eigen::VectorXd r;      // h + N^T M^-1 (u - Q)
   double r_scale = 0.0;   // magnitude of the terms summed into r (rounding reference)
@@ -36,11 +36,7 @@ RowSystem buildRows(const RbsfModel& model, const VecQ& q, const VecQ& v, const 
     s.N.col(n_normal + k) = data.T.col(tangent_rows[k]);
     h[n_normal + k] = data.h_t[tangent_rows[k]];
   }
-  VecQ b;
-  model.generalizedInput(tau, b);
-  b -= data.bias;
-  model.applyMassInverse(q, b);
-  s.free = b;
+  model.freeAcceleration(q, tau, data.bias, s.free);
   s.MinvN = s.N;
   model.applyMassInverse(q, s.MinvN);
   s.K = s.N.transpose() * s.MinvN;

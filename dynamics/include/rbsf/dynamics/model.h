@@ -64,6 +64,10 @@ class RbsfModel {
   /// \brief Generalized input u = (0, 0, 0, tau).
   void generalizedInput(const VecU& tau, VecQ& u) const;
 
+  /// \brief a = M(q)^-1 (u - Q): the acceleration without contact forces, from the input
+  ///        tau and the bias Q of bias(). Allocation-free once a is sized.
+  void freeAcceleration(const VecQ& q, const VecU& tau, const VecQ& Q, VecQ& a) const;
+
   /// \brief Total kinetic energy 1/2 v^T M v [J].
   double kineticEnergy(const VecQ& q, const VecQ& v) const;
   /// \brief Gravitational potential energy of object and carriages [J].
