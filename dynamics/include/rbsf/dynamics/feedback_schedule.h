@@ -44,9 +44,10 @@
 /// the sensing's noise. Each knot keeps the joint gain of its first step and the part gain
 /// a sample at its first step would get.
 ///
-/// Tuning (BENCHMARKS.md): the defaults hold a part balanced on two frictionless tips
-/// under the default sensing; gains four times stiffer (input_fraction) or process noise a
-/// third as large lose it to the camera's noise.
+/// Tuning (docs/notes/2026-11-25-control-law.md): the defaults hold a part balanced on two
+/// frictionless tips under the default sensing; an input_fraction of 0.05 instead of 0.02
+/// loses it to the camera's noise, and so does process noise three times as large (a
+/// third as large loses it to model mismatch).
 
 #include <vector>
 

@@ -9,14 +9,14 @@
 /// vector are set together. Counts simulator steps and propagate() calls (single-threaded
 /// planners; the counters are plain integers).
 ///
-/// Decisive contact modes (DecisiveModes, on by default). A plan is run by a cell that
-/// tracks the joints (tracking_controller.h), never exactly its open-loop torques. Where
-/// the plan has a contact creep from sticking into sliding, stick at the edge of its cone,
-/// or change mode in the middle of a held torque, the tracking's corrections of a few
-/// micrometres decide that contact's mode differently, and the part leaves the planned
-/// path (BENCHMARKS.md "The planner's plans under joint tracking": a one-phase pivot fails
-/// within 0.1 s with a 10 um reference error). So a propagation step counts only if, after
-/// its first `settle_steps` simulator steps (where a new torque may switch modes at once),
+/// Decisive contact modes (DecisiveModes, on by default). A plan is run by a cell under
+/// feedback (control_law.h), never exactly its open-loop torques. Where the plan has a
+/// contact creep from sticking into sliding, stick at the edge of its cone, or change mode
+/// in the middle of a held torque, the feedback's corrections of a few micrometres decide
+/// that contact's mode differently, and the part leaves the planned path (measured under
+/// joint tracking: a one-phase pivot fails within 0.1 s with a 10 um reference error;
+/// docs/notes/2026-11-22-refinement-under-joint-tracking.md). So a propagation step counts only if,
+/// after its first `settle_steps` simulator steps (where a new torque may switch modes at once),
 ///   - every contact keeps the mode (stick, slide, separated) it has then, and
 ///   - every sticking contact keeps |f_t| <= cone_margin mu_s f_n.
 /// A step that breaks either marks its result state (StateType::decisive = false), which

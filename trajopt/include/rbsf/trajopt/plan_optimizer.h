@@ -37,7 +37,8 @@ struct OptimizerSettings {
   ///        false: one run per phase letter, each contact's role the majority over the run.
   ///        Falls back to false when `knots` is fewer than 2 per run. On 32 planner plans
   ///        true converged 28 times against 26, but with refinePlan's retry 2 refinements
-  ///        passed the replay against 4 (BENCHMARKS.md), hence off by default.
+  ///        passed a joint-tracking replay against 4
+  ///        (docs/notes/2026-11-22-refinement-under-joint-tracking.md), hence off by default.
   bool split_runs_by_contact_modes = false;
   /// \brief true: the exact Hessian of the Lagrangian (nested AutoDiff and closed form);
   ///        false: Ipopt's limited-memory (L-BFGS) approximation.
