@@ -19,7 +19,7 @@ SensorModel::SensorModel(const Sensing& sensing, double time_step, std::uint64_t
 }
 
 void SensorModel::joints(const VecQ& q, VecU& out) {
-  const int nu = static_cast<int>(q.size()) - 3;
+  const int nu = static_cast<int>(q.size()) - layout::kObjectDim;
   out.resize(nu);
   for (int j = 0; j < nu; ++j) {
     const double sd =

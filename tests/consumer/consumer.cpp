@@ -1,8 +1,11 @@
 // Uses the installed rbsf package as a cell controller would: loads a cell into the
 // controller facade, plans a short turn (15 degrees, the optimiser tests' seed) on its
 // worker thread while this thread polls, and samples the published plan. Also links
-// rbsf::trajopt (refines the plan when it can). Exit status 0 when the plan is exact and
-// the facade's samples at the plan's knots equal the plan's own q.
+// rbsf::trajopt (refines the plan when it can). What is checked is the package, not the
+// plan: the facade is asked to publish the plan whatever its certificate, and the exit
+// status is 0 when the plan is exact, the facade's samples at the plan's knots equal the
+// plan's own q and its control law gives finite inputs there; the certificate's verdict
+// is printed.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +14,7 @@
 
 #include <rbsf/controller/reorientation_controller.h>
 #include <rbsf/dynamics/state_layout.h>
+#include <rbsf/planner/certificate_report.h>
 #include <rbsf/trajopt/plan_optimizer.h>
 
 int main(int argc, char** argv) {
@@ -28,6 +32,8 @@ int main(int argc, char** argv) {
     request.optimize = true;
     request.optimizer.knots = 30;  // small: converges in seconds (as the CLI test's)
     request.optimizer.max_solve_time = 20.0;
+    request.certificate.trials = 8;
+    request.accept_uncertified = true;
     if (!ctl.plan(request)) return 1;
     long polls = 0;
     while (ctl.status() == rbsf::controller::ControllerStatus::kPlanning) {
@@ -39,11 +45,17 @@ int main(int argc, char** argv) {
                 result.message.empty() ? "" : ": ", result.message.c_str());
     if (ctl.status() != rbsf::controller::ControllerStatus::kReady) return 1;
     rbsf::ReferenceSample ref;
+    const int m = static_cast<int>(result.plan.q0.size()) - rbsf::layout::configDim(0);
+    rbsf::VecU joints(rbsf::layout::controlDim(m)), tau;
     double worst = 0.0;
     for (const rbsf::planner::PlanSample& s : result.plan.samples) {
       if (!ctl.sample(s.t, ref)) return 1;
       worst = std::max(worst, (ref.q - s.q).cwiseAbs().maxCoeff());
+      for (int j = 0; j < joints.size(); ++j) joints[j] = s.q[rbsf::layout::inputToConfig(j)];
+      if (!ctl.track(s.t, joints, tau) || !tau.allFinite()) return 1;
     }
+    std::printf("rbsf_consumer: certificate %s\n",
+                rbsf::planner::verdictText(result.plan.certificate).c_str());
     const auto& last = result.plan.samples.back();
     std::printf(
         "rbsf_consumer: %zu segments, %.3f s, phases %s, final phi %.4f rad (goal "
