@@ -64,8 +64,8 @@ struct PublishedPlan {
       : id(id_),
         duration(plan.duration()),
         q0(plan.q0),
-        schedule(model, planner::makeReference(plan), model.cell().sensing, plan.simulator,
-                 feedback),
+        schedule(model, planner::makeReference(plan),
+                 planner::lawSensing(model.cell().sensing, plan), plan.simulator, feedback),
         law(schedule) {}
 
   std::uint64_t id;

@@ -43,8 +43,8 @@ std::pair<int, double> badness(const TrialOutcome& o, const TrialSettings& s) {
 
 FeedbackSchedule makeSchedule(const RbsfModel& model, const Plan& plan,
                               const CertificateSettings& s) {
-  return FeedbackSchedule(model, makeReference(plan), model.cell().sensing, plan.simulator,
-                          s.feedback);
+  return FeedbackSchedule(model, makeReference(plan), lawSensing(model.cell().sensing, plan),
+                          plan.simulator, s.feedback);
 }
 
 }  // namespace

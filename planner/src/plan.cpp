@@ -180,6 +180,7 @@ std::string planJsonText(const Plan& plan, const PlanFileOptions& options) {
       {"curvature_terms", ss.curvature_terms},         {"drift_correction", ss.drift_correction},
       {"max_mode_iterations", ss.max_mode_iterations}};
   j["steps_per_control"] = plan.steps_per_control;
+  if (plan.joint_feedback) j["feedback"] = "joints";
   j["start"] = poseJson(plan.start);
   j["start_theta"] = plan.start_theta;
   j["goal"] = poseJson(plan.goal);
@@ -305,6 +306,12 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
       }
     }
     plan.steps_per_control = static_cast<int>(integer(j, "steps_per_control", "", 1, 1e6));
+    if (j.contains("feedback")) {
+      const json& f = j.at("feedback");
+      if (!f.is_string() || f.get<std::string>() != "joints")
+        throw InputError(path + ": feedback must be \"joints\" when present");
+      plan.joint_feedback = true;
+    }
     plan.start = pose("start");
     plan.goal = pose("goal");
     plan.start_theta = num(j, "start_theta", "");

@@ -18,4 +18,10 @@ ReferenceTrajectory makeReference(const Plan& plan) {
   return ref;
 }
 
+Sensing lawSensing(const Sensing& cell, const Plan& plan) {
+  Sensing s = cell;
+  if (plan.joint_feedback) s.part_pose.present = false;
+  return s;
+}
+
 }  // namespace rbsf::planner

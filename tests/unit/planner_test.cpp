@@ -12,6 +12,7 @@
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/planner/goal.h"
+#include "rbsf/planner/plan_reference.h"
 #include "rbsf/planner/planner_setup.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/planner/state_space.h"
@@ -191,6 +192,14 @@ TEST_F(PlannerTest, PlanFileRoundTrips) {
   EXPECT_EQ(other_back.simulator.contact_tolerance, 2e-6);
   EXPECT_FALSE(other_back.simulator.curvature_terms);
   EXPECT_EQ(other_back.simulator.max_mode_iterations, 5);
+  // So does the law's feedback: a plan held by the joints alone ignores the part's pose.
+  EXPECT_FALSE(back.joint_feedback);
+  EXPECT_TRUE(lawSensing(model.cell().sensing, back).part_pose.present);
+  other.joint_feedback = true;
+  writePlanJson(other, path);
+  const Plan joints_back = readPlanJson(path);
+  EXPECT_TRUE(joints_back.joint_feedback);
+  EXPECT_FALSE(lawSensing(model.cell().sensing, joints_back).part_pose.present);
   // The loaded segments re-simulate to the same samples.
   std::vector<PlanSegment> segs = back.segments;
   const auto again = simulateSegments(planner.simulator(), back.q0, segs, 10);

@@ -15,6 +15,8 @@
 /// |                 | `activation_distance`, `contact_tolerance`, `slip_tolerance`, |
 /// |                 | `regularization`, `curvature_terms`, `drift_correction`, |
 /// |                 | `max_mode_iterations`; defaults when absent |
+/// | `feedback`      | `"joints"` when the plan holds the part by the joints alone (its |
+/// |                 | law feeds back the joints only); absent otherwise |
 /// | `start`, `goal` | poses {x, y, phi}; `start_theta` the base angle at the start |
 /// | `q0`            | start configuration (state_layout.h order), at rest |
 /// | `phase_sequence` | the segments' phases, runs merged (Plan::phaseSequence) |
@@ -102,6 +104,9 @@ struct Plan {
   ///        that simulates the plan (optimiser, certificate, replay) uses the same physics.
   SimulatorSettings simulator;
   int steps_per_control = 1;
+  /// \brief The plan holds the part by the joints alone at every step (support_search.h):
+  ///        its law feeds back the joints only, whatever the cell senses (lawSensing()).
+  bool joint_feedback = false;
   Pose start, goal;
   double start_theta = 0.0;
   VecQ q0;

@@ -3,6 +3,7 @@
 /// \brief The reference trajectory of a plan, for tracking and replay.
 
 #include "rbsf/dynamics/reference_trajectory.h"
+#include "rbsf/dynamics/sensing.h"
 #include "rbsf/planner/plan.h"
 
 namespace rbsf::planner {
@@ -12,5 +13,11 @@ namespace rbsf::planner {
 ///        or ramped to tau_end when present; the segment's phase).
 /// \throws InputError when the plan has no samples or segments, or bad values.
 ReferenceTrajectory makeReference(const Plan& plan);
+
+/// \brief The sensing the plan's control law uses on a cell that senses `cell`: the cell's,
+///        without the part's pose when the plan holds the part by the joints alone
+///        (Plan::joint_feedback; its quasi-static slides are below what the part estimator
+///        resolves, docs/notes/2026-11-25-support-planner.md).
+Sensing lawSensing(const Sensing& cell, const Plan& plan);
 
 }  // namespace rbsf::planner

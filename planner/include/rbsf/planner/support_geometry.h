@@ -1,0 +1,112 @@
+#pragma once
+/// \file
+/// \brief Quasi-static support configurations: the part's pose seen from the base, the
+///        finger strokes that make a chosen contact set touch it, and whether that support
+///        carries the part with margins (contact_balance.h).
+///
+/// A JigPose is the part's pose (X, Y, psi) in the base frame plus the base angle theta;
+/// the world pose is (x, y) = R(theta) (X, Y), phi = psi + theta. For a contact set, each
+/// touching finger's tip is where its line x_base = r_i enters the part from below (the
+/// placement rule), and every other finger is retracted to its lower stroke limit, at
+/// least `clearance` below the part. A pivot keeps the sticking finger's tip on one point
+/// xi_k of the boundary at stroke l_k: then (X, Y) = (r_k, l_k) - R(psi) c(xi_k).
+///
+/// A support is **valid** when: theta is inside its limits by `theta_margin`; each touching
+/// finger's line meets the part's underside with the inward normal at most
+/// acos(min_normal_cosine) (sliding) or acos(min_sticking_cosine) (sticking: friction
+/// carries what the normal does not) from the finger's axis and a stroke inside its limits by
+/// `stroke_margin`; the retracted fingers clear the part; the contact set is balanced
+/// (margin >= 0) and, when `require_determined`, joint-determined.
+
+#include <optional>
+
+#include "rbsf/dynamics/contact_balance.h"
+#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/placement.h"
+
+namespace rbsf::planner {
+
+/// \brief The part's pose in the base frame and the base angle (file comment).
+struct JigPose {
+  double X = 0.0;      ///< [m], base frame
+  double Y = 0.0;      ///< [m], base frame
+  double psi = 0.0;    ///< part angle relative to the base [rad]
+  double theta = 0.0;  ///< base angle [rad]
+
+  /// \brief The world pose of the part.
+  Pose world() const;
+  /// \brief The JigPose of world pose `p` seen from base angle theta.
+  static JigPose fromWorld(const Pose& p, double theta);
+};
+
+/// \brief The sticking finger's hold on the part during a pivot.
+struct PivotAnchor {
+  int finger = -1;      ///< k
+  double xi = 0.0;      ///< boundary parameter held [rad]
+  double stroke = 0.0;  ///< l_k [m]
+};
+
+/// \brief Geometric limits of a valid support (file comment).
+struct SupportSettings {
+  double theta_margin = 0.03;        ///< [rad]
+  double stroke_margin = 0.01;       ///< [m]
+  double clearance = 0.01;           ///< retracted tips below the part [m]
+  double min_normal_cosine = 0.35;   ///< sliding contacts' normals against the finger axis
+  double min_sticking_cosine = 0.1;  ///< sticking contacts' (friction carries the rest)
+  bool require_determined = true;    ///< the joints alone must fix the part
+  BalanceSettings balance;           ///< force margins
+};
+
+/// \brief A support's configuration and verdict.
+struct Support {
+  bool valid = false;
+  double margin = 0.0;  ///< the balance margin when the geometry is valid
+  VecQ q;               ///< the configuration (state_layout.h)
+  ContactBalance balance;
+};
+
+/// \brief Builds and checks supports; one per thread (holds a ModelData).
+class SupportGeometry {
+ public:
+  SupportGeometry(const RbsfModel& model, SupportSettings settings);
+
+  /// \brief Entry of finger i's line into the part at `pose`: stroke and boundary
+  ///        parameter; false when the line misses the part or meets it where the inward
+  ///        normal is more than acos(min_cosine) from the finger's axis.
+  bool entry(const JigPose& pose, int i, double& stroke, double& xi, double min_cosine) const;
+  /// \brief entry() with the sliding contacts' bound min_normal_cosine.
+  bool entry(const JigPose& pose, int i, double& stroke, double& xi) const {
+    return entry(pose, i, stroke, xi, settings_.min_normal_cosine);
+  }
+
+  /// \brief The configuration of `set` at `pose` (no balance check); nothing when the
+  ///        geometry is invalid. `check_limits` false: only a touching finger whose line
+  ///        misses the part fails (the margins are the search's, not the motion's).
+  std::optional<VecQ> configuration(const JigPose& pose, const ContactSet& set,
+                                    bool check_limits = true) const;
+
+  /// \brief Configuration and verdict; `slip` (may be empty) the planned slip direction of
+  ///        each contact (contact_balance.h), from slipDirections().
+  Support check(const JigPose& pose, const ContactSet& set, const VecC& slip = VecC());
+
+  /// \brief T_i^T (q1 - q0) per finger: the slip each contact sees moving from q0 to q1.
+  VecC slipDirections(const VecQ& q0, const VecQ& q1);
+
+  /// \brief The pose of a pivot about `anchor` with part angle psi and base angle theta.
+  JigPose pivotPose(const PivotAnchor& anchor, double psi, double theta) const;
+
+  /// \brief Every finger whose line meets the part's underside at `pose` with a stroke
+  ///        inside its limits (the placement rule's set, all sliding).
+  ContactSet placedSet(const JigPose& pose) const;
+
+  const RbsfModel& model() const { return model_; }
+  const SupportSettings& settings() const { return settings_; }
+
+ private:
+  const RbsfModel& model_;
+  SupportSettings settings_;
+  ContactBalancer balancer_;
+  ModelData data_;
+};
+
+}  // namespace rbsf::planner

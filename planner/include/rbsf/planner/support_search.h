@@ -1,0 +1,105 @@
+#pragma once
+/// \file
+/// \brief A path of quasi-static supports from a start pose to a goal pose: the part
+///        carried slowly enough that at every instant it is in balance on its contacts,
+///        with margins, and (by default) held by the joints alone (support_geometry.h).
+///
+/// Search: weighted A* over continuous support states kept one per lattice cell (hybrid
+/// A*), from both ends at once: one tree grows from the start, one from the goal's supports
+/// at candidate base angles (every `goal_theta_step` within the limits, psi the goal angle
+/// +- 2 pi), taking turns; quasi-static moves are reversible, so the goal tree read
+/// backwards runs to the goal. A state is a JigPose, a contact set and, for a pivot, its
+/// anchor. Moves:
+///   - **slide** (every touching contact slides, frictionless when mu_k = 0): a step of
+///     `xy_step` in X or Y, `angle_step` in psi or theta, or psi with theta or X;
+///   - **pivot** about the sticking finger k (its tip keeps its point of the part): a step
+///     in psi, theta or both, or of the pivot's stroke;
+///   - **rigid** (two or more stick): the base turns a step, or every finger strokes alike;
+///   - **switch** at a fixed pose: every contact slides, one or all stick, a finger touches
+///     or lets go.
+/// A move is taken when the support is valid at its end and its midpoint, with the slip
+/// the move makes (kinetic friction). Cost: the move's normalised length (metres over
+/// `length_scale`, radians as they are) times 1 + margin_weight / (margin + 0.01), plus
+/// `switch_cost` for a switch, so the path keeps away from the margins' edges and changes
+/// contacts seldom. The path is found when a sliding state of one tree reaches one of the
+/// other's with the same fingers by a straight slide (checked every step), or a start-tree
+/// state reaches the goal by a straight slide or by the pivot that puts the part on it
+/// (the anchor fixes the stroke and the base angle in closed form).
+///
+/// Deterministic: the same inputs give the same path. Analysis-time code (allocates).
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "rbsf/planner/support_geometry.h"
+
+namespace rbsf::planner {
+
+/// \brief One waypoint of a support path.
+struct SupportStep {
+  JigPose pose;
+  ContactSet set;
+  PivotAnchor anchor;   ///< meaningful when set.pivot() >= 0
+  VecQ q;               ///< configuration (state_layout.h)
+  double margin = 0.0;  ///< balance margin of the step's support
+};
+
+/// \brief Settings of SupportSearch (file comment).
+struct SupportSearchSettings {
+  double angle_step = 0.05;   ///< [rad] (about 3 deg)
+  double xy_step = 0.01;      ///< [m]
+  double length_scale = 0.1;  ///< metres per unit of cost [m]
+  double switch_cost = 1.0;
+  double margin_weight = 0.05;
+  double heuristic_weight = 2.0;    ///< weighted A* (>= 1)
+  double goal_connect = 0.6;        ///< try the straight slide below this heuristic
+  double goal_theta_step = 0.0873;  ///< [rad] (5 deg)
+  long max_expansions = 400000;
+  SupportSettings support;
+};
+
+/// \brief Outcome of SupportSearch::search().
+struct SupportPath {
+  bool found = false;
+  std::vector<SupportStep> steps;  ///< start to goal
+  long expansions = 0;
+  std::string message;  ///< why nothing was found
+};
+
+/// \brief The search of the file comment; one per thread.
+class SupportSearch {
+ public:
+  SupportSearch(const RbsfModel& model, SupportSearchSettings settings);
+
+  /// \brief A path from the part at rest at `start` with base angle `start_theta` to
+  ///        `goal` (any base angle). `cancel`, when set and true, stops the search.
+  SupportPath search(const Pose& start, double start_theta, const Pose& goal,
+                     const std::atomic<bool>* cancel = nullptr);
+
+  /// \brief The straight slide from `from` (its contact set) to `to`: its waypoints, every
+  ///        angle_step / xy_step, or an empty vector when a waypoint is not valid.
+  std::vector<SupportStep> straightSlide(const SupportStep& from, const JigPose& to);
+
+  /// \brief The straight pivot from `from` to part angle psi, base angle theta and pivot
+  ///        stroke `stroke`, or an empty vector (as straightSlide).
+  std::vector<SupportStep> straightPivot(const SupportStep& from, double psi, double theta,
+                                         double stroke);
+
+  SupportGeometry& geometry() { return geometry_; }
+  const SupportSearchSettings& settings() const { return settings_; }
+
+ private:
+  struct Node;
+  /// \brief The anchor of a pivot set at `pose` (the tip where it touches); true without
+  ///        a pivot.
+  bool anchorFor(const JigPose& pose, const ContactSet& set, PivotAnchor& anchor);
+  bool stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
+              const PivotAnchor& anchor, SupportStep& out);
+
+  const RbsfModel& model_;
+  SupportSearchSettings settings_;
+  SupportGeometry geometry_;
+};
+
+}  // namespace rbsf::planner

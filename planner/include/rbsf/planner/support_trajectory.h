@@ -1,0 +1,75 @@
+#pragma once
+/// \file
+/// \brief A support path (support_search.h) made into motion: slow, rest-to-rest runs and
+///        force hand-overs at rest, as a reference with the feed-forward input of each
+///        instant; then run once closed loop on the nominal cell, which makes the plan.
+///
+/// **Runs.** Consecutive waypoints with one contact set form a run. The part moves along
+/// the run's waypoints, interpolated by a Catmull-Rom spline in the run's coordinates
+/// ((X, Y, psi, theta) sliding, (psi, theta, l_k) pivoting, (theta, Y) rigid), timed by
+/// the quintic rest-to-rest law s(t) = 10 u^3 - 15 u^4 + 6 u^5 (peak rate 1.875 x the
+/// mean), slow enough that the part's speed stays below `part_speed`, its and the base's
+/// angular speed below `angular_speed`, the strokes' below `stroke_speed`, and every peak
+/// acceleration below `part_acceleration` (m/s^2, rad/s^2 alike).
+///
+/// **Hand-overs.** Between runs the part rests while the contact forces go from one set's
+/// to the next's: a finger that joins first rises (rest to rest) to the point where it
+/// touches, then the forces ramp over `handover_time`; a finger that leaves is first
+/// unloaded by the ramp, then lowered to its stroke limit.
+///
+/// **Feed-forward.** At each knot (every `knot_interval`) q, v and dv/dt of the motion
+/// (central differences of the geometry) and the input of the set's contact balance
+/// (contact_balance.h: the margin-maximising forces that carry that motion); the input
+/// ramps between knots.
+///
+/// **The plan.** The reference is run once, closed loop with the control law on the exact
+/// state of the nominal cell (control_law.h computeFromState), and the input of every step
+/// is recorded: the plan is that trajectory, exact (its segments re-simulated reproduce
+/// it), with the phases the simulator took. Every support holds the part by the joints
+/// alone, so the plan's law feeds back the joints (Plan::joint_feedback).
+
+#include <string>
+#include <vector>
+
+#include "rbsf/dynamics/feedback_schedule.h"
+#include "rbsf/dynamics/reference_trajectory.h"
+#include "rbsf/dynamics/sensing.h"
+#include "rbsf/planner/plan.h"
+#include "rbsf/planner/support_search.h"
+
+namespace rbsf::planner {
+
+/// \brief Speeds and times of the motion (file comment); SI units.
+struct SupportTiming {
+  double part_speed = 0.08;         ///< [m/s]
+  double angular_speed = 0.35;      ///< part and base [rad/s]
+  double stroke_speed = 0.08;       ///< [m/s]
+  double part_acceleration = 0.25;  ///< [m/s^2] and [rad/s^2]
+  double handover_time = 0.3;       ///< [s]
+  double min_run_time = 0.3;        ///< [s]
+  double knot_interval = 0.01;      ///< [s]
+};
+
+/// \brief One stretch of the reference: a run or a hand-over, for reports.
+struct SupportRun {
+  double start = 0.0, end = 0.0;  ///< [s]
+  ContactSet set;                 ///< the set that carries the part
+  bool handover = false;          ///< forces change at rest (or a finger moves alone)
+};
+
+/// \brief The reference of a support path (file comment); `runs`, when given, receives its
+///        stretches. \throws std::invalid_argument for an empty path.
+ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& geometry,
+                                     const SupportPath& path, const SupportTiming& timing,
+                                     std::vector<SupportRun>* runs = nullptr);
+
+/// \brief Run `reference` closed loop on the nominal cell (the joint law on the exact state)
+///        and record it as a plan with joint_feedback set: segments of one
+///        simulator step, samples every `sample_steps` steps, status "exact" when the
+///        part ends within `tolerance` (position [m], angle [rad]) of `goal`.
+Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference,
+                    const SimulatorSettings& simulator, const FeedbackSettings& feedback,
+                    const Pose& goal, double position_tolerance, double angle_tolerance,
+                    int sample_steps);
+
+}  // namespace rbsf::planner

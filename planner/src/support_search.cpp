@@ -1,0 +1,382 @@
+#include "rbsf/planner/support_search.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <queue>
+#include <unordered_map>
+
+namespace rbsf::planner {
+namespace {
+
+/// Normalised distance between two poses (the search's metric).
+double distance(const JigPose& a, const JigPose& b, double length_scale) {
+  const double dx = (a.X - b.X) / length_scale, dy = (a.Y - b.Y) / length_scale;
+  const double dp = a.psi - b.psi, dt = a.theta - b.theta;
+  return std::sqrt(dx * dx + dy * dy + dp * dp + dt * dt);
+}
+
+/// A lattice cell of the search and its contact set.
+using CellKey = std::array<std::int32_t, 6>;
+struct CellKeyHash {
+  std::size_t operator()(const CellKey& k) const {
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the six numbers
+    for (std::int32_t v : k) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
+  }
+};
+
+JigPose lerp(const JigPose& a, const JigPose& b, double s) {
+  return JigPose{a.X + s * (b.X - a.X), a.Y + s * (b.Y - a.Y), a.psi + s * (b.psi - a.psi),
+                 a.theta + s * (b.theta - a.theta)};
+}
+
+}  // namespace
+
+struct SupportSearch::Node {
+  SupportStep step;
+  double g = 0.0;
+  int parent = -1;
+};
+
+SupportSearch::SupportSearch(const RbsfModel& model, SupportSearchSettings settings)
+    : model_(model), settings_(settings), geometry_(model, settings.support) {}
+
+bool SupportSearch::anchorFor(const JigPose& pose, const ContactSet& set, PivotAnchor& anchor) {
+  anchor = PivotAnchor{};
+  const int k = set.pivot();
+  if (k < 0) return true;
+  anchor.finger = k;
+  return geometry_.entry(pose, k, anchor.stroke, anchor.xi,
+                         geometry_.settings().min_sticking_cosine);
+}
+
+bool SupportSearch::stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
+                           const PivotAnchor& anchor, SupportStep& out) {
+  const std::optional<VecQ> q = geometry_.configuration(pose, set);
+  if (!q) return false;
+  const VecC slip = set == from.set ? geometry_.slipDirections(from.q, *q) : VecC();
+  const Support s = geometry_.check(pose, set, slip);
+  if (!s.valid) return false;
+  out.pose = pose;
+  out.set = set;
+  out.anchor = anchor;
+  out.q = s.q;
+  out.margin = s.margin;
+  return true;
+}
+
+std::vector<SupportStep> SupportSearch::straightSlide(const SupportStep& from, const JigPose& to) {
+  const double span = std::max({std::abs(to.psi - from.pose.psi) / settings_.angle_step,
+                                std::abs(to.theta - from.pose.theta) / settings_.angle_step,
+                                std::abs(to.X - from.pose.X) / settings_.xy_step,
+                                std::abs(to.Y - from.pose.Y) / settings_.xy_step});
+  const int n = std::max(1, static_cast<int>(std::ceil(span)));
+  std::vector<SupportStep> out;
+  SupportStep prev = from, next;
+  for (int k = 1; k <= n; ++k) {
+    if (!stepTo(prev, lerp(from.pose, to, static_cast<double>(k) / n), from.set, from.anchor, next))
+      return {};
+    out.push_back(next);
+    prev = next;
+  }
+  return out;
+}
+
+std::vector<SupportStep> SupportSearch::straightPivot(const SupportStep& from, double psi,
+                                                      double theta, double stroke) {
+  const double span = std::max({std::abs(psi - from.pose.psi) / settings_.angle_step,
+                                std::abs(theta - from.pose.theta) / settings_.angle_step,
+                                std::abs(stroke - from.anchor.stroke) / settings_.xy_step});
+  const int n = std::max(1, static_cast<int>(std::ceil(span)));
+  std::vector<SupportStep> out;
+  SupportStep prev = from, next;
+  for (int k = 1; k <= n; ++k) {
+    const double s = static_cast<double>(k) / n;
+    PivotAnchor a = from.anchor;
+    a.stroke += s * (stroke - from.anchor.stroke);
+    const JigPose pose = geometry_.pivotPose(a, from.pose.psi + s * (psi - from.pose.psi),
+                                             from.pose.theta + s * (theta - from.pose.theta));
+    if (!stepTo(prev, pose, from.set, a, next)) return {};
+    out.push_back(next);
+    prev = next;
+  }
+  return out;
+}
+
+SupportPath SupportSearch::search(const Pose& start, double start_theta, const Pose& goal,
+                                  const std::atomic<bool>* cancel) {
+  SupportPath result;
+  const double a = settings_.angle_step, d = settings_.xy_step, ls = settings_.length_scale;
+  const int m = model_.numFingers();
+  const Cell& cell = model_.cell();
+
+  // Goal candidates: the goal pose seen from base angles across the range.
+  std::vector<JigPose> goals;
+  const double t_lo = cell.base.theta_min + settings_.support.theta_margin;
+  const double t_hi = cell.base.theta_max - settings_.support.theta_margin;
+  for (double th = t_lo; th <= t_hi + 1e-12; th += settings_.goal_theta_step)
+    for (int turn = -1; turn <= 1; ++turn) {
+      JigPose g = JigPose::fromWorld(goal, th);
+      g.psi += 2.0 * M_PI * turn;
+      if (std::abs(g.psi) <= 2.0 * M_PI + 1e-9) goals.push_back(g);
+    }
+  auto poseHeuristic = [&](const JigPose& p) {
+    double h = INFINITY;
+    for (const JigPose& g : goals) h = std::min(h, distance(p, g, ls));
+    return h;
+  };
+  // The pivot that puts the part on the goal: the tip's world position is fixed by the goal
+  // pose and the anchor, which fixes the stroke and the base angle. False when out of reach.
+
+  auto pivotTarget = [&](const SupportStep& s, double& psi, double& th, double& l) {
+    const int k = s.set.pivot();
+    const Vec2 c = model_.shape().point(s.anchor.xi);
+    const Vec2 w =
+        Vec2(goal.x, goal.y) + Vec2(std::cos(goal.phi) * c.x() - std::sin(goal.phi) * c.y(),
+                                    std::sin(goal.phi) * c.x() + std::cos(goal.phi) * c.y());
+    const FingerParams& f = cell.fingers[k];
+    const double l2 = w.squaredNorm() - f.r * f.r;
+    if (l2 <= 0.0) return false;
+    l = std::sqrt(l2);
+    th = std::atan2(w.y(), w.x()) - std::atan2(l, f.r);
+    psi = goal.phi - th;
+    psi += 2.0 * M_PI * std::round((s.pose.psi - psi) / (2.0 * M_PI));
+    return th >= t_lo && th <= t_hi && l >= f.stroke_min + settings_.support.stroke_margin &&
+           l <= f.stroke_max - settings_.support.stroke_margin;
+  };
+  auto heuristic = [&](const SupportStep& s) {
+    const double h = poseHeuristic(s.pose);
+    if (s.set.pivot() < 0) return h;
+    double psi, th, l;
+    if (!pivotTarget(s, psi, th, l)) return h + 2.0 * settings_.switch_cost;
+    return std::min(h, std::abs(psi - s.pose.psi) + std::abs(th - s.pose.theta) +
+                           std::abs(l - s.anchor.stroke) / ls);
+  };
+
+  auto key = [&](const SupportStep& s) {
+    auto idx = [](double v, double step) {
+      return static_cast<std::int32_t>(std::lround(v / step));
+    };
+    return CellKey{idx(s.pose.psi, a),
+                   idx(s.pose.theta, a),
+                   idx(s.pose.X, d),
+                   idx(s.pose.Y, d),
+                   static_cast<std::int32_t>(s.set.touching),
+                   static_cast<std::int32_t>(s.set.sticking)};
+  };
+  // Sliding nodes meet by part angle and touching fingers.
+  auto meetKey = [&](const SupportStep& s) {
+    return CellKey{static_cast<std::int32_t>(std::lround(s.pose.psi / a)),
+                   0,
+                   0,
+                   0,
+                   static_cast<std::int32_t>(s.set.touching),
+                   0};
+  };
+  // Two trees: from the start (forward) and from the goal's supports (backward); quasi-static
+  // moves are reversible, so a backward chain read from a node to its root runs to the goal.
+  using Entry = std::pair<double, int>;
+  struct Tree {
+    std::vector<Node> nodes;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+    std::unordered_map<CellKey, double, CellKeyHash> best;
+    std::unordered_map<CellKey, std::vector<int>, CellKeyHash> sliding;  // U nodes by cell
+  };
+  Tree trees[2];
+  const JigPose start_pose = JigPose::fromWorld(start, start_theta);
+  auto treeHeuristic = [&](int t, const SupportStep& s) {
+    return t == 0 ? heuristic(s) : distance(s.pose, start_pose, ls);
+  };
+  auto push = [&](int t, const SupportStep& s, double g, int parent) {
+    Tree& tree = trees[t];
+    const CellKey k = key(s);
+    const auto it = tree.best.find(k);
+    if (it != tree.best.end() && it->second <= g + 1e-12) return;
+    tree.best[k] = g;
+    tree.nodes.push_back(Node{s, g, parent});
+    const int id = static_cast<int>(tree.nodes.size()) - 1;
+    tree.open.emplace(g + settings_.heuristic_weight * treeHeuristic(t, s), id);
+    if (s.set.phase() == Phase::kU) tree.sliding[meetKey(s)].push_back(id);
+  };
+  // Roots: every valid set of the placement rule's fingers (all sliding, one or all sticking)
+  // at the start, and at the goal seen from each candidate base angle.
+  auto seed = [&](int t, const JigPose& pose) {
+    const ContactSet placed = geometry_.placedSet(pose);
+    std::vector<std::uint32_t> sticking = {0u, placed.touching};
+    for (int k = 0; k < m; ++k)
+      if (placed.touches(k)) sticking.push_back(1u << k);
+    for (std::uint32_t st : sticking) {
+      const ContactSet set{placed.touching, st};
+      SupportStep s;
+      if (!anchorFor(pose, set, s.anchor)) continue;
+      const Support sup = geometry_.check(pose, set);
+      if (!sup.valid) continue;
+      s.pose = pose;
+      s.set = set;
+      s.q = sup.q;
+      s.margin = sup.margin;
+      push(t, s, 0.0, -1);
+    }
+  };
+  seed(0, start_pose);
+  if (trees[0].nodes.empty()) {
+    result.message = "the start support is not in balance with the required margins";
+    return result;
+  }
+  for (const JigPose& g : goals) seed(1, g);
+
+  auto moveCost = [&](const SupportStep& from, const SupportStep& to) {
+    return distance(from.pose, to.pose, ls) *
+           (1.0 + settings_.margin_weight / (std::min(from.margin, to.margin) + 0.01));
+  };
+  // The path: the forward chain to `f`, `middle`, then the backward chain from `b` (if any).
+  auto finish = [&](int f, const std::vector<SupportStep>& middle, int b) {
+    for (int n = f; n >= 0; n = trees[0].nodes[n].parent)
+      result.steps.push_back(trees[0].nodes[n].step);
+    std::reverse(result.steps.begin(), result.steps.end());
+    result.steps.insert(result.steps.end(), middle.begin(), middle.end());
+    for (int n = b >= 0 ? trees[1].nodes[b].parent : -1; n >= 0; n = trees[1].nodes[n].parent)
+      result.steps.push_back(trees[1].nodes[n].step);
+    result.found = true;
+  };
+  // A new sliding node of tree t meets the other tree's sliding nodes in its cell.
+  auto meet = [&](int t, int id) {
+    const SupportStep& s = trees[t].nodes[id].step;
+    const auto it = trees[1 - t].sliding.find(meetKey(s));
+    if (it == trees[1 - t].sliding.end()) return false;
+    std::vector<std::pair<double, int>> near;
+    for (int other : it->second) {
+      const double dist = distance(s.pose, trees[1 - t].nodes[other].step.pose, ls);
+      if (dist <= settings_.goal_connect) near.emplace_back(dist, other);
+    }
+    std::sort(near.begin(), near.end());
+    if (near.size() > 3) near.resize(3);
+    for (const auto& [dist, other] : near) {
+      const int f = t == 0 ? id : other, b = t == 0 ? other : id;
+      const SupportStep& from = trees[0].nodes[f].step;
+      const SupportStep& to = trees[1].nodes[b].step;
+      if (from.set != to.set) continue;
+      const std::vector<SupportStep> middle = straightSlide(from, to.pose);
+      if (middle.empty()) continue;
+      finish(f, middle, b);
+      return true;
+    }
+    return false;
+  };
+
+  std::vector<std::pair<double, int>> order;
+  int turn = 1;
+  while (!trees[0].open.empty() || !trees[1].open.empty()) {
+    turn = trees[1 - turn].open.empty() ? turn : 1 - turn;
+    const int t = turn;
+    Tree& tree = trees[t];
+    const auto [f, id] = tree.open.top();
+    tree.open.pop();
+    (void)f;
+    const Node node = tree.nodes[id];
+    if (tree.best[key(node.step)] < node.g - 1e-12) continue;
+    if (++result.expansions > settings_.max_expansions) break;
+    if ((result.expansions & 255) == 0 && cancel != nullptr && cancel->load()) {
+      result.message = "stopped";
+      return result;
+    }
+    const SupportStep& s = node.step;
+
+    if (t == 0 && heuristic(s) <= settings_.goal_connect) {
+      order.clear();
+      for (int g = 0; g < static_cast<int>(goals.size()); ++g)
+        order.emplace_back(distance(s.pose, goals[g], ls), g);
+      std::sort(order.begin(), order.end());
+      std::vector<SupportStep> tail;
+      if (s.set.phase() == Phase::kU) {
+        for (const auto& [dist, g] : order) {
+          if (dist > settings_.goal_connect) break;
+          if (!(tail = straightSlide(s, goals[g])).empty()) break;
+        }
+      } else if (s.set.pivot() >= 0) {
+        double psi, th, l;
+        if (pivotTarget(s, psi, th, l)) tail = straightPivot(s, psi, th, l);
+      }
+      if (!tail.empty()) {
+        finish(id, tail, -1);
+        return result;
+      }
+    }
+
+    SupportStep next;
+    bool met = false;
+    auto add = [&](double g) {
+      const std::size_t before = tree.nodes.size();
+      push(t, next, g, id);
+      if (tree.nodes.size() > before && next.set.phase() == Phase::kU &&
+          meet(t, static_cast<int>(tree.nodes.size()) - 1))
+        met = true;
+    };
+    auto tryMove = [&](const JigPose& pose, const ContactSet& set, const PivotAnchor& anchor) {
+      SupportStep mid;
+      if (met || !stepTo(s, lerp(s.pose, pose, 0.5), set, anchor, mid)) return;
+      if (!stepTo(mid, pose, set, anchor, next)) return;
+      add(node.g + moveCost(s, next));
+    };
+    auto trySwitch = [&](const ContactSet& set) {
+      PivotAnchor anchor;
+      if (met || !anchorFor(s.pose, set, anchor)) return;
+      if (set.pivot() >= 0 && set.pivot() == s.set.pivot()) anchor = s.anchor;
+      if (stepTo(s, s.pose, set, anchor, next)) add(node.g + settings_.switch_cost);
+    };
+
+    const std::uint32_t touching = s.set.touching;
+    switch (s.set.phase()) {
+      case Phase::kU: {
+        static const int kMoves[][4] = {{1, 0, 0, 0}, {-1, 0, 0, 0}, {0, 1, 0, 0},  {0, -1, 0, 0},
+                                        {0, 0, 1, 0}, {0, 0, -1, 0}, {0, 0, 0, 1},  {0, 0, 0, -1},
+                                        {0, 0, 1, 1}, {0, 0, 1, -1}, {0, 0, -1, 1}, {0, 0, -1, -1},
+                                        {1, 0, 1, 0}, {1, 0, -1, 0}, {-1, 0, 1, 0}, {-1, 0, -1, 0}};
+        for (const auto& mv : kMoves)
+          tryMove(JigPose{s.pose.X + mv[0] * d, s.pose.Y + mv[1] * d, s.pose.psi + mv[2] * a,
+                          s.pose.theta + mv[3] * a},
+                  s.set, s.anchor);
+        break;
+      }
+      case Phase::kP: {
+        static const int kMoves[][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},  {0, -1, 0},
+                                        {1, 1, 0}, {1, -1, 0}, {-1, 1, 0}, {-1, -1, 0},
+                                        {0, 0, 1}, {0, 0, -1}};
+        for (const auto& mv : kMoves) {
+          PivotAnchor anchor = s.anchor;
+          anchor.stroke += mv[2] * d;
+          tryMove(geometry_.pivotPose(anchor, s.pose.psi + mv[0] * a, s.pose.theta + mv[1] * a),
+                  s.set, anchor);
+        }
+        break;
+      }
+      default: {  // rigid with the base: the base turns, or every finger strokes alike
+        static const int kMoves[][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+        for (const auto& mv : kMoves)
+          tryMove(JigPose{s.pose.X, s.pose.Y + mv[1] * d, s.pose.psi, s.pose.theta + mv[0] * a},
+                  s.set, s.anchor);
+        break;
+      }
+    }
+    // Switches at this pose: every contact slides, one sticks, all stick; a finger touches
+    // (sliding) or a sliding one lets go.
+    if (s.set.sticking != 0) trySwitch(ContactSet{touching, 0u});
+    for (int k = 0; k < m; ++k)
+      if ((touching >> k) & 1u && s.set.sticking != (1u << k))
+        trySwitch(ContactSet{touching, 1u << k});
+    if (s.set.sticking != touching) trySwitch(ContactSet{touching, touching});
+    for (int j = 0; j < m; ++j)
+      if (!s.set.sticks(j)) trySwitch(ContactSet{touching ^ (1u << j), s.set.sticking});
+    if (met) return result;
+  }
+  if (result.message.empty())
+    result.message =
+        result.expansions > settings_.max_expansions
+            ? "no support path within " + std::to_string(settings_.max_expansions) + " expansions"
+            : "no support path exists at this resolution and these margins";
+  return result;
+}
+
+}  // namespace rbsf::planner

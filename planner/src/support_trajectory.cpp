@@ -1,0 +1,267 @@
+#include "rbsf/planner/support_trajectory.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "rbsf/dynamics/control_law.h"
+#include "rbsf/dynamics/rollout.h"
+#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/planner/plan_reference.h"
+
+namespace rbsf::planner {
+namespace {
+
+/// Quintic rest-to-rest progress s(u), u in [0, 1].
+double quintic(double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  return u * u * u * (10.0 + u * (-15.0 + 6.0 * u));
+}
+
+/// Catmull-Rom interpolation of waypoints w (uniform parameter), at u in [0, n - 1].
+Eigen::VectorXd catmullRom(const std::vector<Eigen::VectorXd>& w, double u) {
+  const int n = static_cast<int>(w.size());
+  if (n == 1) return w[0];
+  u = std::clamp(u, 0.0, static_cast<double>(n - 1));
+  const int i = std::min(static_cast<int>(u), n - 2);
+  const double s = u - i;
+  const Eigen::VectorXd& p1 = w[i];
+  const Eigen::VectorXd& p2 = w[i + 1];
+  const Eigen::VectorXd p0 = i > 0 ? w[i - 1] : 2.0 * p1 - p2;
+  const Eigen::VectorXd p3 = i + 2 < n ? w[i + 2] : 2.0 * p2 - p1;
+  const double s2 = s * s, s3 = s2 * s;
+  return 0.5 * ((2.0 * p1) + (-p0 + p2) * s + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * s2 +
+                (-p0 + 3.0 * p1 - 3.0 * p2 + p3) * s3);
+}
+
+/// One stretch of the reference being built.
+struct Stretch {
+  enum Kind { kRun, kFinger, kRamp } kind = kRun;
+  ContactSet set;                       ///< the set carrying the part
+  std::vector<Eigen::VectorXd> points;  ///< run coordinates (kRun)
+  JigPose base;                         ///< the pose (kFinger, kRamp) or the run's first
+  PivotAnchor anchor;                   ///< pivot runs
+  int finger = -1;                      ///< kFinger: the finger that moves
+  double from = 0.0, to = 0.0;          ///< kFinger: its strokes
+  VecU tau_from, tau_to;                ///< kRamp: the inputs at both ends
+  ContactSet next;                      ///< kRamp: the set after it
+  double duration = 0.0;
+};
+
+Eigen::VectorXd runCoordinates(const SupportStep& s) {
+  switch (s.set.phase()) {
+    case Phase::kU:
+      return Eigen::Vector4d(s.pose.X, s.pose.Y, s.pose.psi, s.pose.theta);
+    case Phase::kP:
+      return Eigen::Vector3d(s.pose.psi, s.pose.theta, s.anchor.stroke);
+    default:
+      return Eigen::Vector2d(s.pose.theta, s.pose.Y);
+  }
+}
+
+JigPose runPose(const Stretch& r, const SupportGeometry& g, const Eigen::VectorXd& c) {
+  switch (r.set.phase()) {
+    case Phase::kU:
+      return JigPose{c[0], c[1], c[2], c[3]};
+    case Phase::kP: {
+      PivotAnchor a = r.anchor;
+      a.stroke = c[2];
+      return g.pivotPose(a, c[0], c[1]);
+    }
+    default:
+      return JigPose{r.base.X, c[1], r.base.psi, c[0]};
+  }
+}
+
+}  // namespace
+
+ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& geometry,
+                                     const SupportPath& path, const SupportTiming& timing,
+                                     std::vector<SupportRun>* runs) {
+  if (path.steps.empty()) throw std::invalid_argument("supportReference: empty path");
+  const int m = model.numFingers();
+  const Cell& cell = model.cell();
+  ContactBalancer balancer(model, geometry.settings().balance);
+  ModelData data(m);
+
+  // The configuration of a stretch at progress s in [0, 1].
+  auto configuration = [&](const Stretch& r, double s) -> VecQ {
+    JigPose pose = r.base;
+    ContactSet set = r.set;
+    if (r.kind == Stretch::kRun)
+      pose = runPose(r, geometry, catmullRom(r.points, s * (r.points.size() - 1.0)));
+    std::optional<VecQ> q = geometry.configuration(pose, set, false);
+    if (!q) throw std::runtime_error("supportReference: the support path leaves the jig");
+    if (r.kind == Stretch::kFinger) (*q)[layout::stroke(r.finger)] = r.from + s * (r.to - r.from);
+    return *q;
+  };
+  auto staticTau = [&](const JigPose& pose, const ContactSet& set) {
+    const std::optional<VecQ> q = geometry.configuration(pose, set, false);
+    return balancer.statics(*q, set, data).tau;
+  };
+
+  // Stretches: runs and, between them, the hand-overs.
+  std::vector<Stretch> stretches;
+  std::size_t i = 0;
+  while (i < path.steps.size()) {
+    std::size_t j = i;
+    while (j + 1 < path.steps.size() && path.steps[j + 1].set == path.steps[i].set) ++j;
+    const SupportStep& first = path.steps[i];
+    if (!stretches.empty()) {  // the hand-over from the previous set at this pose
+      const ContactSet from = stretches.back().set, to = first.set;
+      const JigPose pose = first.pose;
+      const std::uint32_t joins = to.touching & ~from.touching;
+      const std::uint32_t leaves = from.touching & ~to.touching;
+      const std::optional<VecQ> q_to = geometry.configuration(pose, to, false);
+      for (int f = 0; f < m; ++f)
+        if ((joins >> f) & 1u) {
+          Stretch r;
+          r.kind = Stretch::kFinger;
+          r.set = from;
+          r.base = pose;
+          r.finger = f;
+          r.from = cell.fingers[f].stroke_min;
+          r.to = (*q_to)[layout::stroke(f)];
+          r.duration =
+              std::max(timing.min_run_time, 1.875 * std::abs(r.to - r.from) / timing.stroke_speed);
+          stretches.push_back(r);
+        }
+      Stretch ramp;
+      ramp.kind = Stretch::kRamp;
+      ramp.set = ContactSet{from.touching | to.touching, from.sticking & to.sticking};
+      ramp.base = pose;
+      ramp.tau_from = staticTau(pose, from);
+      ramp.tau_to = staticTau(pose, to);
+      ramp.next = to;
+      ramp.duration = timing.handover_time;
+      stretches.push_back(ramp);
+      const std::optional<VecQ> q_from = geometry.configuration(pose, from, false);
+      for (int f = 0; f < m; ++f)
+        if ((leaves >> f) & 1u) {
+          Stretch r;
+          r.kind = Stretch::kFinger;
+          r.set = to;
+          r.base = pose;
+          r.finger = f;
+          r.from = (*q_from)[layout::stroke(f)];
+          r.to = cell.fingers[f].stroke_min;
+          r.duration =
+              std::max(timing.min_run_time, 1.875 * std::abs(r.to - r.from) / timing.stroke_speed);
+          stretches.push_back(r);
+        }
+    }
+    if (j > i) {  // a run (a set held at one pose alone has none)
+      Stretch r;
+      r.kind = Stretch::kRun;
+      r.set = first.set;
+      r.base = first.pose;
+      r.anchor = first.anchor;
+      for (std::size_t k = i; k <= j; ++k) r.points.push_back(runCoordinates(path.steps[k]));
+      // Lengths along the spline: the part's travel and turn, the base's, the strokes'.
+      double travel = 0.0, turn = 0.0, base = 0.0, stroke = 0.0;
+      const int fine = 8 * static_cast<int>(r.points.size());
+      VecQ prev = configuration(r, 0.0);
+      for (int k = 1; k <= fine; ++k) {
+        const VecQ q = configuration(r, static_cast<double>(k) / fine);
+        const VecQ dq = q - prev;
+        travel += std::hypot(dq[layout::kX], dq[layout::kY]);
+        turn += std::abs(dq[layout::kPhi]);
+        base += std::abs(dq[layout::kTheta]);
+        stroke += dq.tail(m).cwiseAbs().maxCoeff();
+        prev = q;
+      }
+      const double peak = 1.875, peak_acc = 5.7735;
+      const double longest = std::max({travel, turn, base});
+      r.duration = std::max({timing.min_run_time, peak * travel / timing.part_speed,
+                             peak * std::max(turn, base) / timing.angular_speed,
+                             peak * stroke / timing.stroke_speed,
+                             std::sqrt(peak_acc * longest / timing.part_acceleration)});
+      stretches.push_back(r);
+    }
+    i = j + 1;
+  }
+
+  // Knots and input pieces.
+  ReferenceTrajectory ref;
+  double t0 = 0.0;
+  const double dt = timing.knot_interval;
+  VecU tau_prev;
+  bool first_knot = true;
+  for (const Stretch& r : stretches) {
+    const int n = std::max(1, static_cast<int>(std::ceil(r.duration / dt - 1e-9)));
+    const double step = r.duration / n;
+    auto q_at = [&](double t) { return configuration(r, quintic(t / r.duration)); };
+    for (int k = first_knot ? 0 : 1; k <= n; ++k) {
+      const double t = k * step, h = std::min(1e-3, 0.25 * step);
+      const VecQ q = q_at(t);
+      const VecQ v = (q_at(t + h) - q_at(t - h)) / (2.0 * h);
+      const VecQ a = (q_at(t + h) - 2.0 * q + q_at(t - h)) / (h * h);
+      VecU tau;
+      if (r.kind == Stretch::kRamp) {
+        const double s = quintic(t / r.duration);
+        tau = (1.0 - s) * r.tau_from + s * r.tau_to;
+      } else {
+        const ContactBalance b = balancer.solve(q, v, a, r.set, data);
+        tau = b.solvable ? b.tau : (tau_prev.size() ? tau_prev : b.tau);
+      }
+      ref.addKnot(t0 + t, q, v);
+      if (!first_knot || k > 0) {
+        const Phase ph = (r.kind == Stretch::kRamp ? r.next : r.set).phase();
+        ref.addInputPiece(t0 + (k - 1) * step, step, tau_prev, tau, ph);
+      }
+      tau_prev = tau;
+    }
+    if (runs != nullptr)
+      runs->push_back(SupportRun{t0, t0 + r.duration, r.kind == Stretch::kRamp ? r.next : r.set,
+                                 r.kind != Stretch::kRun});
+    first_knot = false;
+    t0 += r.duration;
+  }
+  return ref;
+}
+
+Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference,
+                    const SimulatorSettings& simulator, const FeedbackSettings& feedback,
+                    const Pose& goal, double position_tolerance, double angle_tolerance,
+                    int sample_steps) {
+  Plan plan;
+  plan.joint_feedback = true;
+  const FeedbackSchedule schedule(model, reference, lawSensing(model.cell().sensing, plan),
+                                  simulator, feedback);
+  ControlLaw law(schedule);
+  const Simulator sim(model, simulator);
+  const double h = simulator.time_step;
+  ReferenceSample start;
+  reference.sample(reference.startTime(), start);
+  SimState state(start.q, VecQ::Zero(start.q.size()));
+  SimulatorWorkspace ws(model.numFingers());
+  const long steps = std::lround((reference.endTime() - reference.startTime()) / h);
+  plan.simulator = simulator;
+  plan.q0 = start.q;
+  plan.start = Pose{start.q[layout::kX], start.q[layout::kY], start.q[layout::kPhi]};
+  plan.start_theta = start.q[layout::kTheta];
+  plan.goal = goal;
+  plan.steps_per_control = 1;
+  rollout(
+      sim, state, steps, ws,
+      [&](const SimState& now, long n, VecU& tau) {
+        law.computeFromState(static_cast<double>(n) * h, now.q, now.v, tau);
+        PlanSegment seg;
+        seg.steps = 1;
+        seg.duration = h;
+        seg.tau = tau;
+        plan.segments.push_back(seg);
+        return true;
+      },
+      [](const SimState&, const StepReport&, const VecU&, long) { return true; });
+  plan.samples = simulateSegments(sim, plan.q0, plan.segments, sample_steps);
+  const PlanSample& last = plan.samples.back();
+  const double dx = last.q[layout::kX] - goal.x, dy = last.q[layout::kY] - goal.y;
+  const double dphi = std::remainder(last.q[layout::kPhi] - goal.phi, 2.0 * M_PI);
+  plan.goal_distance =
+      std::max(std::hypot(dx, dy) / position_tolerance, std::abs(dphi) / angle_tolerance);
+  plan.status = plan.goal_distance <= 1.0 ? "exact" : "approximate";
+  return plan;
+}
+
+}  // namespace rbsf::planner

@@ -1,0 +1,134 @@
+// The support planner (support_geometry.h, support_search.h, support_trajectory.h): a pivot
+// keeps its tip on one point of the part; a found path is a chain of valid supports, each
+// a lattice step or a switch from the last, pivots keeping their anchor and rigid runs
+// their pose on the base, ending on the goal; its plan is exact, slow, joint-fed back and
+// ends at rest on the goal.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/planner/support_trajectory.h"
+
+namespace rbsf::planner {
+namespace {
+
+const RbsfModel& defaultModel() {
+  static const RbsfModel model(loadCell(std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml"));
+  return model;
+}
+
+SupportSearchSettings searchSettings() {
+  SupportSearchSettings s;
+  s.angle_step = 5.0 * M_PI / 180;
+  s.xy_step = 0.02;
+  s.heuristic_weight = 5.0;
+  s.support.min_normal_cosine = 0.1;
+  return s;
+}
+
+/// The world position of boundary point xi of the part at configuration q.
+Vec2 partPoint(const RbsfModel& model, const VecQ& q, double xi) {
+  const Vec2 c = model.shape().point(xi);
+  const double p = q[layout::kPhi];
+  return Vec2(q[layout::kX] + std::cos(p) * c.x() - std::sin(p) * c.y(),
+              q[layout::kY] + std::sin(p) * c.x() + std::cos(p) * c.y());
+}
+
+const Pose kStart{0.1, 0.40, 0.0};
+const Pose kTurn15{0.1, 0.40, -15.0 * M_PI / 180};
+
+TEST(SupportGeometry, WorldAndJigPosesRoundTripAndAPivotKeepsItsTipOnItsPoint) {
+  const RbsfModel& model = defaultModel();
+  SupportGeometry geometry(model, searchSettings().support);
+  const JigPose jp = JigPose::fromWorld(kTurn15, 0.2);
+  const Pose back = jp.world();
+  EXPECT_NEAR(back.x, kTurn15.x, 1e-12);
+  EXPECT_NEAR(back.y, kTurn15.y, 1e-12);
+  EXPECT_NEAR(back.phi, kTurn15.phi, 1e-12);
+
+  const JigPose start = JigPose::fromWorld(kStart, 0.0);
+  PivotAnchor anchor{2, 0.0, 0.0};
+  ASSERT_TRUE(geometry.entry(start, 2, anchor.stroke, anchor.xi));
+  const ContactSet pivot{0b111u, 0b100u};
+  for (double dpsi : {-0.1, -0.05, 0.05}) {
+    for (double theta : {-0.1, 0.0, 0.1}) {
+      const JigPose p = geometry.pivotPose(anchor, start.psi + dpsi, theta);
+      const std::optional<VecQ> q = geometry.configuration(p, pivot, false);
+      ASSERT_TRUE(q.has_value());
+      EXPECT_NEAR((*q)[layout::stroke(2)], anchor.stroke, 1e-9);
+      EXPECT_LT((model.fingertip(*q, 2) - partPoint(model, *q, anchor.xi)).norm(), 1e-9);
+    }
+  }
+}
+
+TEST(SupportSearch, APathIsAChainOfValidSupportsEndingOnTheGoal) {
+  const RbsfModel& model = defaultModel();
+  const SupportSearchSettings s = searchSettings();
+  SupportSearch search(model, s);
+  const SupportPath path = search.search(kStart, 0.0, kTurn15);
+  ASSERT_TRUE(path.found) << path.message;
+  SupportGeometry& geometry = search.geometry();
+  for (std::size_t k = 0; k < path.steps.size(); ++k) {
+    const SupportStep& st = path.steps[k];
+    EXPECT_TRUE(geometry.check(st.pose, st.set).valid) << "step " << k;
+    if (k == 0) continue;
+    const SupportStep& prev = path.steps[k - 1];
+    if (st.set != prev.set) {  // a switch happens at rest, in place
+      EXPECT_NEAR(st.pose.psi, prev.pose.psi, 1e-12);
+      EXPECT_NEAR(st.pose.X, prev.pose.X, 1e-12);
+      continue;
+    }
+    EXPECT_LE(std::abs(st.pose.psi - prev.pose.psi), s.angle_step + 1e-9) << "step " << k;
+    EXPECT_LE(std::abs(st.pose.theta - prev.pose.theta), s.angle_step + 1e-9) << "step " << k;
+    if (st.set.pivot() >= 0) {  // the pivot's tip stays on its point of the part
+      const int f = st.set.pivot();
+      EXPECT_EQ(st.anchor.xi, prev.anchor.xi);
+      EXPECT_LT((model.fingertip(st.q, f) - partPoint(model, st.q, st.anchor.xi)).norm(), 1e-9);
+    } else if (st.set.phase() == Phase::kC) {  // rigid with the base
+      EXPECT_NEAR(st.pose.psi, prev.pose.psi, 1e-12);
+      EXPECT_NEAR(st.pose.X, prev.pose.X, 1e-12);
+    }
+  }
+  const Pose end = path.steps.back().pose.world();
+  EXPECT_NEAR(end.x, kTurn15.x, 1e-9);
+  EXPECT_NEAR(end.y, kTurn15.y, 1e-9);
+  EXPECT_NEAR(std::remainder(end.phi - kTurn15.phi, 2 * M_PI), 0.0, 1e-9);
+}
+
+TEST(SupportTrajectory, ThePlanIsExactSlowJointFedBackAndEndsAtRestOnTheGoal) {
+  const RbsfModel& model = defaultModel();
+  SupportSearch search(model, searchSettings());
+  const SupportPath path = search.search(kStart, 0.0, kTurn15);
+  ASSERT_TRUE(path.found);
+  const SupportTiming timing;
+  const ReferenceTrajectory ref = supportReference(model, search.geometry(), path, timing);
+  // The reference respects its speeds (the spline's peak may pass the mean's bound a little).
+  ReferenceSample r;
+  double speed = 0.0, turn = 0.0;
+  for (double t = 0.0; t <= ref.endTime(); t += 0.005) {
+    ref.sample(t, r);
+    speed = std::max(speed, std::hypot(r.v[layout::kX], r.v[layout::kY]));
+    turn = std::max(turn, std::abs(r.v[layout::kPhi]));
+  }
+  EXPECT_LE(speed, 1.2 * timing.part_speed);
+  EXPECT_LE(turn, 1.2 * timing.angular_speed);
+
+  const Plan plan = closedLoopPlan(model, ref, SimulatorSettings{}, FeedbackSettings{}, kTurn15,
+                                   0.01, 2.0 * M_PI / 180, 10);
+  EXPECT_EQ(plan.status, "exact");
+  EXPECT_TRUE(plan.joint_feedback);
+  const PlanSample& last = plan.samples.back();
+  EXPECT_LT(std::hypot(last.v[layout::kX], last.v[layout::kY]), 1e-3);
+  EXPECT_LT(std::abs(last.v[layout::kPhi]), 1e-3);
+  // Exact: its segments re-simulated give its samples bit for bit.
+  std::vector<PlanSegment> segments = plan.segments;
+  const Simulator sim(model, plan.simulator);
+  const std::vector<PlanSample> again = simulateSegments(sim, plan.q0, segments, 10);
+  ASSERT_EQ(again.size(), plan.samples.size());
+  EXPECT_TRUE(again.back().q == last.q);
+}
+
+}  // namespace
+}  // namespace rbsf::planner
