@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <queue>
@@ -107,6 +108,8 @@ std::vector<SupportStep> SupportSearch::straightPivot(const SupportStep& from, d
 
 SupportPath SupportSearch::search(const Pose& start, double start_theta, const Pose& goal,
                                   const std::atomic<bool>* cancel) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point started = Clock::now();
   SupportPath result;
   const double a = settings_.angle_step, d = settings_.xy_step, ls = settings_.length_scale;
   const int m = model_.numFingers();
@@ -278,9 +281,15 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     const Node node = tree.nodes[id];
     if (tree.best[key(node.step)] < node.g - 1e-12) continue;
     if (++result.expansions > settings_.max_expansions) break;
-    if ((result.expansions & 255) == 0 && cancel != nullptr && cancel->load()) {
-      result.message = "stopped";
-      return result;
+    if ((result.expansions & 255) == 0) {
+      if (cancel != nullptr && cancel->load()) {
+        result.message = "stopped";
+        return result;
+      }
+      if (std::chrono::duration<double>(Clock::now() - started).count() > settings_.time_limit) {
+        result.message = "no support path within the time limit";
+        return result;
+      }
     }
     const SupportStep& s = node.step;
 

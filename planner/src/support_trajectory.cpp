@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "rbsf/dynamics/control_law.h"
@@ -223,7 +224,7 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
 Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference,
                     const SimulatorSettings& simulator, const FeedbackSettings& feedback,
                     const Pose& goal, double position_tolerance, double angle_tolerance,
-                    int sample_steps) {
+                    int sample_steps, int control_steps) {
   Plan plan;
   plan.joint_feedback = true;
   const FeedbackSchedule schedule(model, reference, lawSensing(model.cell().sensing, plan),
@@ -241,16 +242,20 @@ Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference
   plan.start = Pose{start.q[layout::kX], start.q[layout::kY], start.q[layout::kPhi]};
   plan.start_theta = start.q[layout::kTheta];
   plan.goal = goal;
-  plan.steps_per_control = 1;
+  plan.steps_per_control = control_steps;
+  VecU held;
   rollout(
       sim, state, steps, ws,
       [&](const SimState& now, long n, VecU& tau) {
-        law.computeFromState(static_cast<double>(n) * h, now.q, now.v, tau);
-        PlanSegment seg;
-        seg.steps = 1;
-        seg.duration = h;
-        seg.tau = tau;
-        plan.segments.push_back(seg);
+        if (n % control_steps == 0) {  // the law once per segment, its input held
+          law.computeFromState(static_cast<double>(n) * h, now.q, now.v, held);
+          PlanSegment seg;
+          seg.steps = static_cast<int>(std::min<long>(control_steps, steps - n));
+          seg.duration = seg.steps * h;
+          seg.tau = held;
+          plan.segments.push_back(seg);
+        }
+        tau = held;
         return true;
       },
       [](const SimState&, const StepReport&, const VecU&, long) { return true; });

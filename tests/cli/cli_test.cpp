@@ -362,6 +362,30 @@ bool allFinite(const nlohmann::json& j) {
   return true;
 }
 
+TEST(PlanReorientation, SupportPlannerWritesASlowJointFedBackPlanAndItsVerdict) {
+  const std::string out = writeTemp("support.json", "");
+  const Result r = run(kPlan + " --cell " + kCells +
+                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --planner support"
+                       " --quiet --trials 4 --out " +
+                       out);
+  ASSERT_TRUE(r.status == 0 || r.status == 4) << r.status << "\n" << r.err;
+  const auto j = nlohmann::json::parse(slurp(out));
+  EXPECT_EQ(j["planner"], "support");
+  EXPECT_EQ(j["status"], "exact");
+  EXPECT_EQ(j["feedback"], "joints");
+  EXPECT_EQ(j["certificate"]["law"], "joint feedback");
+  EXPECT_EQ(j["certificate"]["certified"].get<bool>(), r.status == 0);
+  EXPECT_NE(r.out.find("not refined"), std::string::npos) << r.out;
+  // Handled, not thrown: slow throughout, at rest at the end.
+  for (const auto& smp : j["samples"]) {
+    EXPECT_LE(std::hypot(smp["v"][0].get<double>(), smp["v"][1].get<double>()), 0.25);
+    EXPECT_LE(std::abs(smp["v"][2].get<double>()), 1.0);
+  }
+  const auto& last = j["samples"].back()["v"];
+  EXPECT_LT(std::hypot(last[0].get<double>(), last[1].get<double>()), 1e-3);
+  EXPECT_LT(std::abs(last[2].get<double>()), 1e-3);
+}
+
 TEST(PlanReorientation, OptimisesByDefaultAndWritesTheBetterCertifiedPlan) {
   const std::string out = writeTemp("opt_plan.json", "");
   const Result r = run(kPlan + " --cell " + kCells +

@@ -22,6 +22,7 @@
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/planner/certificate.h"
 #include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/support_planner.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
 #include "rbsf/tools/tool_main.h"
@@ -89,7 +90,9 @@ int run(int argc, char** argv) {
                  "shorter; absolute: the part's total turn from phi = 0, so -270deg asks for "
                  "three quarters of a clockwise turn");
   app.add_option("--start-theta", o.start_theta, "base angle at the start (default 0)");
-  app.add_option("--planner", o.planner, "KPIECE1 (default), RRT, SST, EST or PDST");
+  app.add_option("--planner", o.planner,
+                 "KPIECE1 (default), RRT, SST, EST or PDST (kinodynamic search), or support "
+                 "(slow quasi-static supports held by the joints, see README)");
   app.add_option("--time-limit", o.time_limit, "seconds (default 30)");
   app.add_option("--seed", o.seed, "random seed, positive integer (default 1)");
   app.add_option("--out", o.out, "write the plan as JSON");
@@ -121,8 +124,9 @@ int run(int argc, char** argv) {
   const PlanOutputs outputs({o.out, o.csv, o.svg, o.report, o.reproducible,
                              parseNumber(o.svg_still, "--svg-still"), o.cell});
 
+  const bool support = o.planner == "support";
   planner::PlannerSettings settings;
-  settings.planner = o.planner;
+  settings.planner = support ? "KPIECE1" : o.planner;
   settings.decisive_modes.enabled = !o.no_decisive_modes;
   settings.time_limit = parseNumber(o.time_limit, "--time-limit");
   if (settings.time_limit <= 0.0) throw InputError("--time-limit: must be positive");
@@ -166,14 +170,34 @@ int run(int argc, char** argv) {
   const trajopt::PlanOptimizer optimizer(model, opt_settings);  // bad settings: exit 2
   rp.checkProblem(problem);                                     // bad input before any search
   planner::Plan plan;
-  const bool found = rp.solve(problem, plan);
-  if (tty) std::fprintf(stderr, "\n");
-  if (InterruptFlag::raised()) {
-    if (found) outputs.write(model, plan);
-    std::printf("interrupted: best distance %.3g (tolerance units)%s; %llu propagations\n",
-                rp.bestDistance(), found && outputs.any() ? ", best plan so far written" : "",
-                static_cast<unsigned long long>(rp.propagations()));
-    return kExitInterrupted;
+  bool found = false;
+  if (support) {
+    planner::SupportPlannerSettings ss;
+    ss.time_limit = settings.time_limit;
+    ss.position_tolerance = settings.position_tolerance;
+    ss.angle_tolerance = settings.angle_tolerance;
+    ss.cancel = settings.cancel;
+    planner::SupportPlanner sp(model, ss);
+    if (tty) std::fprintf(stderr, "plan-reorientation: searching supports\n");
+    found = sp.solve(problem, plan);
+    if (InterruptFlag::raised()) {
+      std::printf("interrupted: no plan written\n");
+      return kExitInterrupted;
+    }
+    if (!found) {
+      std::printf("no support path: %s (%ld expansions)\n", sp.message().c_str(), sp.expansions());
+      return kExitTimeLimit;
+    }
+  } else {
+    found = rp.solve(problem, plan);
+    if (tty) std::fprintf(stderr, "\n");
+    if (InterruptFlag::raised()) {
+      if (found) outputs.write(model, plan);
+      std::printf("interrupted: best distance %.3g (tolerance units)%s; %llu propagations\n",
+                  rp.bestDistance(), found && outputs.any() ? ", best plan so far written" : "",
+                  static_cast<unsigned long long>(rp.propagations()));
+      return kExitInterrupted;
+    }
   }
   auto stage = [&](const char* what) {
     if (tty) std::fprintf(stderr, "plan-reorientation: %s\n", what);
@@ -186,7 +210,10 @@ int run(int argc, char** argv) {
         "propagations\n",
         plan.segments.size(), plan.duration(), plan.phaseSequence().c_str(), plan.planning_time,
         static_cast<unsigned long long>(plan.propagations));
-    if (!o.no_optimize) {
+    if (support) {
+      std::printf("optimisation: not run (support plans are not refined yet)\n");
+    }
+    if (!o.no_optimize && !support) {
       stage("optimising, then certifying the planner's and the optimised plans");
       trajopt::RefineOutcome refined = trajopt::refinePlan(optimizer, plan, refine);
       if (InterruptFlag::raised()) {  // stopped: the planner's plan, not certified
@@ -226,7 +253,7 @@ int run(int argc, char** argv) {
   std::printf(
       "no exact plan within %.3g s: best distance %.3g (tolerance units: 1 = 1 cm or "
       "2 deg)%s; %llu propagations\n",
-      settings.time_limit, rp.bestDistance(),
+      settings.time_limit, support ? plan.goal_distance : rp.bestDistance(),
       found && outputs.any() ? ", approximate plan written" : "",
       static_cast<unsigned long long>(rp.propagations()));
   return kExitTimeLimit;

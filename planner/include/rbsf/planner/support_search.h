@@ -56,6 +56,7 @@ struct SupportSearchSettings {
   double goal_connect = 0.6;        ///< try the straight slide below this heuristic
   double goal_theta_step = 0.0873;  ///< [rad] (5 deg)
   long max_expansions = 400000;
+  double time_limit = 30.0;  ///< wall time [s]
   SupportSettings support;
 };
 

@@ -23,8 +23,8 @@
 /// ramps between knots.
 ///
 /// **The plan.** The reference is run once, closed loop with the control law on the exact
-/// state of the nominal cell (control_law.h computeFromState), and the input of every step
-/// is recorded: the plan is that trajectory, exact (its segments re-simulated reproduce
+/// state of the nominal cell (control_law.h computeFromState, every 5 ms, held), and the
+/// inputs are recorded: the plan is that trajectory, exact (its segments re-simulated reproduce
 /// it), with the phases the simulator took. Every support holds the part by the joints
 /// alone, so the plan's law feeds back the joints (Plan::joint_feedback).
 
@@ -63,13 +63,14 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
                                      const SupportPath& path, const SupportTiming& timing,
                                      std::vector<SupportRun>* runs = nullptr);
 
-/// \brief Run `reference` closed loop on the nominal cell (the joint law on the exact state)
-///        and record it as a plan with joint_feedback set: segments of one
-///        simulator step, samples every `sample_steps` steps, status "exact" when the
-///        part ends within `tolerance` (position [m], angle [rad]) of `goal`.
+/// \brief Run `reference` closed loop on the nominal cell (the joint law on the exact state,
+///        evaluated every `control_steps` simulator steps and held) and record it as a plan
+///        with joint_feedback set: a segment per evaluation, samples every `sample_steps`
+///        steps, status "exact" when the part ends within the tolerances (position [m],
+///        angle [rad]) of `goal`.
 Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference,
                     const SimulatorSettings& simulator, const FeedbackSettings& feedback,
                     const Pose& goal, double position_tolerance, double angle_tolerance,
-                    int sample_steps);
+                    int sample_steps, int control_steps = 5);
 
 }  // namespace rbsf::planner

@@ -1,0 +1,60 @@
+#pragma once
+/// \file
+/// \brief The support planner as one call: a support path (support_search.h), its motion
+///        and the exact plan that motion makes closed loop (support_trajectory.h).
+///
+/// The plan handles the part slowly and keeps it in balance with margins at every instant;
+/// the joints alone hold it (Plan::joint_feedback), so its law feeds back the joints. The
+/// goal angle is reached the shorter way (or +- 2 pi when that way has no path). Status
+/// "exact" when the closed-loop run ends within the tolerances of the goal.
+
+#include <atomic>
+#include <string>
+
+#include "rbsf/dynamics/feedback_schedule.h"
+#include "rbsf/planner/plan.h"
+#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/support_trajectory.h"
+
+namespace rbsf::planner {
+
+/// \brief Settings of SupportPlanner.
+struct SupportPlannerSettings {
+  SupportSearchSettings search = defaultSearch();
+  SupportTiming timing;
+  FeedbackSettings feedback;                  ///< the law of the closed-loop run
+  SimulatorSettings simulator;                ///< the plan's physics
+  double time_limit = 30.0;                   ///< search wall time [s]
+  double position_tolerance = 0.01;           ///< [m]
+  double angle_tolerance = 2.0 * M_PI / 180;  ///< [rad]
+  int sample_steps = 20;                      ///< plan samples every this many steps
+  const std::atomic<bool>* cancel = nullptr;  ///< stops the search when set and true
+
+  /// \brief The search's defaults for the support planner: 5 deg and 2 cm steps, greedy
+  ///        (weight 5), sliding normals up to 84 deg from the finger's axis.
+  static SupportSearchSettings defaultSearch();
+};
+
+/// \brief Plans with supports; one per thread.
+class SupportPlanner {
+ public:
+  SupportPlanner(const RbsfModel& model, SupportPlannerSettings settings);
+
+  /// \brief Search, then make the plan. False (plan empty) when no support path was found:
+  ///        message() says why.
+  bool solve(const Problem& problem, Plan& plan);
+
+  /// \brief Why the last solve() found nothing, empty otherwise.
+  const std::string& message() const { return message_; }
+  /// \brief Expansions of the last search.
+  long expansions() const { return expansions_; }
+  const SupportPlannerSettings& settings() const { return settings_; }
+
+ private:
+  const RbsfModel& model_;
+  SupportPlannerSettings settings_;
+  std::string message_;
+  long expansions_ = 0;
+};
+
+}  // namespace rbsf::planner

@@ -1,0 +1,47 @@
+#include "rbsf/planner/support_planner.h"
+
+#include <chrono>
+
+namespace rbsf::planner {
+
+SupportSearchSettings SupportPlannerSettings::defaultSearch() {
+  SupportSearchSettings s;
+  s.angle_step = 5.0 * M_PI / 180;
+  s.xy_step = 0.02;
+  s.heuristic_weight = 5.0;
+  s.support.min_normal_cosine = 0.1;
+  return s;
+}
+
+SupportPlanner::SupportPlanner(const RbsfModel& model, SupportPlannerSettings settings)
+    : model_(model), settings_(std::move(settings)) {}
+
+bool SupportPlanner::solve(const Problem& problem, Plan& plan) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point t0 = Clock::now();
+  message_.clear();
+  SupportSearchSettings ss = settings_.search;
+  ss.time_limit = settings_.time_limit;
+  SupportSearch search(model_, ss);
+  const SupportPath path =
+      search.search(problem.start, problem.start_theta, problem.goal, settings_.cancel);
+  expansions_ = path.expansions;
+  if (!path.found) {
+    message_ = path.message;
+    plan = Plan{};
+    return false;
+  }
+  const ReferenceTrajectory reference =
+      supportReference(model_, search.geometry(), path, settings_.timing);
+  plan = closedLoopPlan(model_, reference, settings_.simulator, settings_.feedback, problem.goal,
+                        settings_.position_tolerance, settings_.angle_tolerance,
+                        settings_.sample_steps);
+  plan.planner = "support";
+  plan.start = problem.start;
+  plan.start_theta = problem.start_theta;
+  plan.propagations = static_cast<std::uint64_t>(path.expansions);
+  plan.planning_time = std::chrono::duration<double>(Clock::now() - t0).count();
+  return true;
+}
+
+}  // namespace rbsf::planner
