@@ -275,9 +275,9 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     turn = trees[1 - turn].open.empty() ? turn : 1 - turn;
     const int t = turn;
     Tree& tree = trees[t];
-    const auto [f, id] = tree.open.top();
+    // A plain variable: lambdas below capture it, which clang 14 refuses for bindings.
+    const int id = tree.open.top().second;
     tree.open.pop();
-    (void)f;
     const Node node = tree.nodes[id];
     if (tree.best[key(node.step)] < node.g - 1e-12) continue;
     if (++result.expansions > settings_.max_expansions) break;
