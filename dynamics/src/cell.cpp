@@ -239,6 +239,16 @@ void readUncertainty(const Reader& rd, const YAML::Node& n, Uncertainty& u) {
   u.actuator_gain = rd.number(n, p, "actuator_gain", u.actuator_gain, false);
 }
 
+/// Section `motion_limits` (motion_limits.h); keys left out keep the values in `l`.
+void readMotionLimits(const Reader& rd, const YAML::Node& n, MotionLimits& l) {
+  const std::string p = "motion_limits";
+  rd.mapping(n, p, {"part_speed", "angular_speed", "rest"});
+  l.part_speed = rd.number(n, p, "part_speed", l.part_speed, false);
+  l.angular_speed = rd.number(n, p, "angular_speed", l.angular_speed, false);
+  std::tie(l.rest_speed, l.rest_angular_speed) =
+      rd.pair(n, p, "rest", false, {l.rest_speed, l.rest_angular_speed});
+}
+
 }  // namespace
 
 void Cell::validate() const {
@@ -293,6 +303,11 @@ void Cell::validate() const {
   c.nonNegative(pp.position_noise, "sensing.part_pose.noise[0]");
   c.nonNegative(pp.angle_noise, "sensing.part_pose.noise[1]");
 
+  c.positive(motion_limits.part_speed, "motion_limits.part_speed");
+  c.positive(motion_limits.angular_speed, "motion_limits.angular_speed");
+  c.positive(motion_limits.rest_speed, "motion_limits.rest[0]");
+  c.positive(motion_limits.rest_angular_speed, "motion_limits.rest[1]");
+
   // uncertainty: a draw must keep masses, inertias, friction and gains positive.
   const Uncertainty& u = uncertainty;
   c.fraction(u.mass, "uncertainty.mass");
@@ -323,7 +338,8 @@ Cell parseCell(const std::string& yaml_text, const std::string& label) {
   }
   if (root.IsNull()) rd.fail("the cell is empty (expected keys base, fingers, object, friction)");
   rd.mapping(root, "",
-             {"gravity", "base", "fingers", "object", "friction", "sensing", "uncertainty"});
+             {"gravity", "base", "fingers", "object", "friction", "sensing", "uncertainty",
+              "motion_limits"});
 
   Cell cell;
   cell.name = label;
@@ -367,6 +383,8 @@ Cell parseCell(const std::string& yaml_text, const std::string& label) {
   if (sensing.IsDefined()) readSensing(rd, sensing, cell.sensing);
   const YAML::Node uncertainty = rd.get(root, "", "uncertainty", false);
   if (uncertainty.IsDefined()) readUncertainty(rd, uncertainty, cell.uncertainty);
+  const YAML::Node limits = rd.get(root, "", "motion_limits", false);
+  if (limits.IsDefined()) readMotionLimits(rd, limits, cell.motion_limits);
 
   cell.validate();
   return cell;

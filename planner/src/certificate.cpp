@@ -58,6 +58,7 @@ std::string verdictText(const Certificate& c) {
   std::string text = buf;
   if (c.worst.index >= 0 && !c.worst.success)
     text += "; worst trial " + std::to_string(c.worst.index) + ": " + c.worst.failure;
+  if (!c.motion.ok()) text += "; the plan " + motionViolationText(c.motion);
   return text;
 }
 
@@ -91,6 +92,7 @@ std::string certificateReportText(const Certificate& c) {
   text += buf;
   text += "  worst " + worstTrialText(c) + "\n";
   if (c.worst.index >= 0 && !c.worst.success) text += "  it failed: " + c.worst.failure + "\n";
+  text += "  " + motionText(c.motion) + "\n";
   return text;
 }
 
@@ -145,7 +147,8 @@ Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateS
     if (c.worst.index < 0 || badness(o, s.trial) > badness(c.worst, s.trial)) c.worst = o;
   }
   c.success_rate = static_cast<double>(c.successes) / c.trials;
-  c.certified = c.success_rate >= s.required_rate;
+  c.motion = measureMotion(plan, model.cell().motion_limits);
+  c.certified = c.success_rate >= s.required_rate && c.motion.ok();
   if (all) *all = std::move(outcomes);
   return c;
 }

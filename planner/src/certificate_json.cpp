@@ -83,30 +83,43 @@ json certificateJson(const Certificate& c) {
     worst["departure_time"] = w.departure_time;
     worst["departure_phase"] = w.departure_phase;
   }
-  return {{"law", c.law},
-          {"trials", c.trials},
-          {"successes", c.successes},
-          {"success_rate", c.success_rate},
-          {"required_rate", c.required_rate},
-          {"certified", c.certified},
-          {"seed", c.seed},
-          {"criteria",
-           {{"position_tolerance", c.position_tolerance},
-            {"angle_tolerance", c.angle_tolerance},
-            {"rest_speed", c.rest_speed},
-            {"rest_angular_speed", c.rest_angular_speed},
-            {"settle_time", c.settle_time}}},
-          {"sensing", sensing},
-          {"uncertainty",
-           {{"mass", u.mass},
-            {"inertia", u.inertia},
-            {"com", u.com},
-            {"static_friction", u.static_friction},
-            {"kinetic_friction", pair(u.kinetic_friction_min, u.kinetic_friction_max)},
-            {"initial_position", u.initial_position},
-            {"initial_angle", u.initial_angle},
-            {"actuator_gain", u.actuator_gain}}},
-          {"worst", worst}};
+  json out = {{"law", c.law},
+              {"trials", c.trials},
+              {"successes", c.successes},
+              {"success_rate", c.success_rate},
+              {"required_rate", c.required_rate},
+              {"certified", c.certified},
+              {"seed", c.seed},
+              {"criteria",
+               {{"position_tolerance", c.position_tolerance},
+                {"angle_tolerance", c.angle_tolerance},
+                {"rest_speed", c.rest_speed},
+                {"rest_angular_speed", c.rest_angular_speed},
+                {"settle_time", c.settle_time}}},
+              {"sensing", sensing},
+              {"uncertainty",
+               {{"mass", u.mass},
+                {"inertia", u.inertia},
+                {"com", u.com},
+                {"static_friction", u.static_friction},
+                {"kinetic_friction", pair(u.kinetic_friction_min, u.kinetic_friction_max)},
+                {"initial_position", u.initial_position},
+                {"initial_angle", u.initial_angle},
+                {"actuator_gain", u.actuator_gain}}},
+              {"worst", worst}};
+  const PlanMotion& m = c.motion;
+  if (m.measured)
+    out["motion"] = {{"peak_speed", m.peak_speed},
+                     {"peak_speed_time", m.peak_speed_time},
+                     {"peak_angular_speed", m.peak_angular_speed},
+                     {"peak_angular_time", m.peak_angular_time},
+                     {"end_speed", m.end_speed},
+                     {"end_angular_speed", m.end_angular_speed},
+                     {"limits",
+                      {{"part_speed", m.limits.part_speed},
+                       {"angular_speed", m.limits.angular_speed},
+                       {"rest", pair(m.limits.rest_speed, m.limits.rest_angular_speed)}}}};
+  return out;
 }
 
 Certificate readCertificateJson(const json& j, const std::string& where) {
@@ -172,6 +185,23 @@ Certificate readCertificateJson(const json& j, const std::string& where) {
   if (w.contains("departure_time")) {
     o.departure_time = wr.num(w, "departure_time");
     o.departure_phase = wr.text(w, "departure_phase");
+  }
+  if (j.contains("motion")) {
+    const Reader mr = rd.sub("motion");
+    const json& mj = j.at("motion");
+    PlanMotion& m = c.motion;
+    m.measured = true;
+    m.peak_speed = mr.num(mj, "peak_speed");
+    m.peak_speed_time = mr.num(mj, "peak_speed_time");
+    m.peak_angular_speed = mr.num(mj, "peak_angular_speed");
+    m.peak_angular_time = mr.num(mj, "peak_angular_time");
+    m.end_speed = mr.num(mj, "end_speed");
+    m.end_angular_speed = mr.num(mj, "end_angular_speed");
+    const Reader lr = mr.sub("limits");
+    const json& lj = mr.need(mj, "limits");
+    m.limits.part_speed = lr.num(lj, "part_speed");
+    m.limits.angular_speed = lr.num(lj, "angular_speed");
+    std::tie(m.limits.rest_speed, m.limits.rest_angular_speed) = lr.pairOf(lj, "rest");
   }
   return c;
 }

@@ -1,5 +1,6 @@
 #include "rbsf/planner/support_planner.h"
 
+#include <algorithm>
 #include <chrono>
 
 namespace rbsf::planner {
@@ -31,8 +32,12 @@ bool SupportPlanner::solve(const Problem& problem, Plan& plan) {
     plan = Plan{};
     return false;
   }
-  const ReferenceTrajectory reference =
-      supportReference(model_, search.geometry(), path, settings_.timing);
+  // The cell's motion limits bound the timing's speeds (the part turns with psi and theta).
+  SupportTiming timing = settings_.timing;
+  const MotionLimits& limits = model_.cell().motion_limits;
+  timing.part_speed = std::min(timing.part_speed, limits.part_speed);
+  timing.angular_speed = std::min(timing.angular_speed, 0.5 * limits.angular_speed);
+  const ReferenceTrajectory reference = supportReference(model_, search.geometry(), path, timing);
   plan = closedLoopPlan(model_, reference, settings_.simulator, settings_.feedback, problem.goal,
                         settings_.position_tolerance, settings_.angle_tolerance,
                         settings_.sample_steps);

@@ -348,6 +348,21 @@ TEST(CellLoader, EverySensingAndUncertaintyKeyIsRead) {
   EXPECT_DOUBLE_EQ(u.actuator_gain, 0.07);
 }
 
+TEST(CellLoader, MotionLimitsAreReadAndDefaultToTheDocumentedValues) {
+  const MotionLimits d = parseCell(goodYaml()).motion_limits;
+  EXPECT_DOUBLE_EQ(d.part_speed, 0.25);  // motion_limits.h
+  EXPECT_DOUBLE_EQ(d.angular_speed, 1.0);
+  EXPECT_DOUBLE_EQ(d.rest_speed, 1e-3);
+  EXPECT_DOUBLE_EQ(d.rest_angular_speed, 1e-3);
+  const MotionLimits l =
+      parseCell(goodYaml() + "motion_limits: {part_speed: 0.1, rest: [0.002, 0.003]}\n")
+          .motion_limits;
+  EXPECT_DOUBLE_EQ(l.part_speed, 0.1);
+  EXPECT_DOUBLE_EQ(l.angular_speed, d.angular_speed);
+  EXPECT_DOUBLE_EQ(l.rest_speed, 0.002);
+  EXPECT_DOUBLE_EQ(l.rest_angular_speed, 0.003);
+}
+
 TEST(CellLoader, OmittedKeysInsideASectionKeepTheirDefaults) {
   const Cell c = parseCell(goodYaml() +
                            "sensing: {part_pose: {latency: 0.05}}\n"
@@ -658,6 +673,22 @@ std::vector<BadCase> badCases() {
       {"KineticFrictionNotNumber",
        goodYaml() + "uncertainty: {kinetic_friction: [low, 0.05]}\n",
        {"uncertainty.kinetic_friction[0] must be a number (got 'low')"}},
+      // motion_limits
+      {"UnknownMotionLimitKey",
+       goodYaml() + "motion_limits: {speed: 0.1}\n",
+       {"unknown key motion_limits.speed (expected one of: part_speed, angular_speed, rest)"}},
+      {"ZeroPartSpeed",
+       goodYaml() + "motion_limits: {part_speed: 0}\n",
+       {"motion_limits.part_speed must be positive (got 0)"}},
+      {"NegativeAngularSpeed",
+       goodYaml() + "motion_limits: {angular_speed: -1}\n",
+       {"motion_limits.angular_speed must be positive (got -1)"}},
+      {"RestNotAPair",
+       goodYaml() + "motion_limits: {rest: 0.001}\n",
+       {"motion_limits.rest must be a list of 2 numbers"}},
+      {"ZeroRestAngularSpeed",
+       goodYaml() + "motion_limits: {rest: [0.001, 0]}\n",
+       {"motion_limits.rest[1] must be positive (got 0)"}},
       {"KineticFrictionScalar",
        goodYaml() + "uncertainty: {kinetic_friction: 0.05}\n",
        {"uncertainty.kinetic_friction must be a list of 2 numbers (got '0.05')"}},

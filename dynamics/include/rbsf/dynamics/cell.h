@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rbsf/dynamics/motion_limits.h"
 #include "rbsf/dynamics/sensing.h"
 #include "rbsf/dynamics/shape.h"
 
@@ -53,6 +54,7 @@ struct Cell {
   FrictionParams friction;
   Sensing sensing;          ///< what the cell measures (sensing.h; defaults when absent)
   Uncertainty uncertainty;  ///< what a plan must tolerate (sensing.h; defaults when absent)
+  MotionLimits motion_limits;  ///< how fast a plan may move the part (motion_limits.h)
   std::string name;         ///< file name or label, for messages
 
   /// \brief Number of fingers m.

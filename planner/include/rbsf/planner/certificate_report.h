@@ -8,6 +8,7 @@
 #include <string>
 
 #include "rbsf/dynamics/sensing.h"
+#include "rbsf/planner/plan_motion.h"
 
 namespace rbsf::planner {
 
@@ -40,7 +41,7 @@ struct Certificate {
   int trials = 0;
   int successes = 0;
   double success_rate = 0.0;    ///< successes / trials
-  double required_rate = 0.95;  ///< certified when success_rate >= this
+  double required_rate = 0.95;  ///< certified when success_rate >= this and motion.ok()
   bool certified = false;
   std::uint64_t seed = 0;           ///< the draws' seed: the same seed gives the same certificate
   double settle_time = 0.0;         ///< held at rest after the plan's end [s]
@@ -51,6 +52,7 @@ struct Certificate {
   Sensing sensing;                  ///< what the trials' cell measured
   Uncertainty uncertainty;          ///< what they drew from
   TrialOutcome worst;               ///< the worst trial (certificate.h), index -1 when none
+  PlanMotion motion;                ///< the plan's speeds against the cell's motion limits
 };
 
 /// \brief The certificate as JSON text (the plan file's `certificate` object, plan.h).
@@ -63,11 +65,12 @@ std::string worstTrialText(const Certificate& certificate);
 
 /// \brief The report a tool prints: "certificate (<law>, <N> trials, seed <S>): CERTIFIED" or
 ///        "NOT CERTIFIED", the share of successes, the worst trial (worstTrialText) and,
-///        when it failed, why. Lines end in newlines.
+///        when it failed, why; then the plan's motion (motionText). Lines end in newlines.
 std::string certificateReportText(const Certificate& certificate);
 
 /// \brief The one-line verdict: "certified: 31/32 trials (97 %)" or "NOT certified: ...,
-///        worst trial 7: <its failure>".
+///        worst trial 7: <its failure>" (and "; the plan <motionViolationText>" when the
+///        plan breaks the motion limits).
 std::string verdictText(const Certificate& certificate);
 
 }  // namespace rbsf::planner

@@ -44,7 +44,11 @@
 /// |                 | [m/s], `angular_speed` [rad/s], `dropped` (and `dropped_time`), |
 /// |                 | `saturated_time` [s], `min_f_n` [N], `max_deviation` |
 /// |                 | [tolerance units], `phases`, and where it left the planned |
-/// |                 | path `departure_time` [s], `departure_phase` |
+/// |                 | path `departure_time` [s], `departure_phase`; `motion` (when |
+/// |                 | the plan has samples, plan_motion.h): `peak_speed` [m/s] and |
+/// |                 | `peak_speed_time` [s], `peak_angular_speed` [rad/s] and |
+/// |                 | `peak_angular_time`, `end_speed`, `end_angular_speed` and the |
+/// |                 | cell's `limits` {`part_speed`, `angular_speed`, `rest`} |
 ///
 /// CSV (writePlanCsv): one row per sample, the columns of trajectory_sample.h.
 /// Files are written to a temporary name and renamed; a plan with a NaN is refused.
