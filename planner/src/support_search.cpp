@@ -165,9 +165,18 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     return CellKey{idx(s.pose.psi, a),
                    idx(s.pose.theta, a),
                    idx(s.pose.X, d),
-                   idx(s.pose.Y, d),
+                   0,  // not Y: the height changes no balance (file comment)
                    static_cast<std::int32_t>(s.set.touching),
                    static_cast<std::int32_t>(s.set.sticking)};
+  };
+  // Pivots meet by part and base angle, touching fingers and pivot finger.
+  auto pivotKey = [&](const SupportStep& s, int dpsi, int dtheta, int finger) {
+    return CellKey{static_cast<std::int32_t>(std::lround(s.pose.psi / a)) + dpsi,
+                   static_cast<std::int32_t>(std::lround(s.pose.theta / a)) + dtheta,
+                   finger,
+                   0,
+                   static_cast<std::int32_t>(s.set.touching),
+                   0};
   };
   // Sliding nodes meet by part angle and touching fingers.
   auto meetKey = [&](const SupportStep& s) {
@@ -186,6 +195,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
     std::unordered_map<CellKey, double, CellKeyHash> best;
     std::unordered_map<CellKey, std::vector<int>, CellKeyHash> sliding;  // U nodes by cell
+    std::unordered_map<CellKey, std::vector<int>, CellKeyHash> pivots;   // P nodes by cell
   };
   Tree trees[2];
   const JigPose start_pose = JigPose::fromWorld(start, start_theta);
@@ -202,6 +212,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     const int id = static_cast<int>(tree.nodes.size()) - 1;
     tree.open.emplace(g + settings_.heuristic_weight * treeHeuristic(t, s), id);
     if (s.set.phase() == Phase::kU) tree.sliding[meetKey(s)].push_back(id);
+    if (s.set.phase() == Phase::kP) tree.pivots[pivotKey(s, 0, 0, s.set.pivot())].push_back(id);
   };
   // Roots: every valid set of the placement rule's fingers (all sliding, one or all sticking)
   // at the start, and at the goal seen from each candidate base angle.
@@ -269,6 +280,91 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     return false;
   };
 
+  // Two pivots on fingers k (from) and j (to) with the same touching fingers: pivot about k
+  // (base and stroke still) to the part angle where finger j's line enters the part at
+  // to's anchor, switch the stick from k to j there, and pivot about j onto `to` (its
+  // anchor then fixes the pose). The part angle is found by bisection on the boundary
+  // parameter, which along the first pivot depends on the part angle alone.
+  auto bridgePivots = [&](const SupportStep& from, const SupportStep& to) {
+    std::vector<SupportStep> out;
+    const int j = to.set.pivot();
+    auto offset = [&](double psi, double& value) {
+      const JigPose p = geometry_.pivotPose(from.anchor, psi, from.pose.theta);
+      double stroke, xi;
+      if (!geometry_.entry(p, j, stroke, xi, settings_.support.min_sticking_cosine)) return false;
+      value = std::remainder(xi - to.anchor.xi, 2.0 * M_PI);
+      return true;
+    };
+    const double lo = std::min(from.pose.psi, to.pose.psi) - 2.0 * a;
+    const double hi = std::max(from.pose.psi, to.pose.psi) + 2.0 * a;
+    double psi1 = NAN, prev_psi = lo, prev = 0.0;
+    bool have_prev = offset(lo, prev);
+    for (double psi = lo + 0.25 * a; psi <= hi + 1e-12 && std::isnan(psi1); psi += 0.25 * a) {
+      double value;
+      if (!offset(psi, value)) {
+        have_prev = false;
+        continue;
+      }
+      if (have_prev && (prev <= 0.0) != (value <= 0.0) && std::abs(value - prev) < 1.0) {
+        double l = prev_psi, h = psi, fl = prev;
+        for (int it = 0; it < 50; ++it) {
+          const double mid = 0.5 * (l + h);
+          double fm;
+          if (!offset(mid, fm)) break;
+          if ((fm <= 0.0) == (fl <= 0.0))
+            l = mid, fl = fm;
+          else
+            h = mid;
+        }
+        psi1 = 0.5 * (l + h);
+      }
+      prev_psi = psi, prev = value, have_prev = true;
+    }
+    if (std::isnan(psi1)) return out;
+    if (std::abs(psi1 - from.pose.psi) > 1e-12) {
+      out = straightPivot(from, psi1, from.pose.theta, from.anchor.stroke);
+      if (out.empty()) return out;
+    }
+    const SupportStep& at = out.empty() ? from : out.back();
+    PivotAnchor anchor;
+    SupportStep handed;
+    if (!anchorFor(at.pose, to.set, anchor) || !stepTo(at, at.pose, to.set, anchor, handed))
+      return std::vector<SupportStep>{};
+    out.push_back(handed);
+    const std::vector<SupportStep> last =
+        straightPivot(handed, to.pose.psi, to.pose.theta, to.anchor.stroke);
+    if (last.empty()) return std::vector<SupportStep>{};
+    out.insert(out.end(), last.begin(), last.end());
+    return out;
+  };
+  // A new pivot node of tree t meets the other tree's pivots on another finger nearby.
+  auto meetPivot = [&](int t, int id) {
+    const SupportStep& s = trees[t].nodes[id].step;
+    std::vector<std::pair<double, int>> near;
+    for (int j = 0; j < m; ++j) {
+      if (!s.set.touches(j) || j == s.set.pivot()) continue;
+      for (int dp = -1; dp <= 1; ++dp)
+        for (int dt = -1; dt <= 1; ++dt) {
+          const auto it = trees[1 - t].pivots.find(pivotKey(s, dp, dt, j));
+          if (it == trees[1 - t].pivots.end()) continue;
+          for (int other : it->second)
+            if (trees[1 - t].nodes[other].step.set.touching == s.set.touching)
+              near.emplace_back(distance(s.pose, trees[1 - t].nodes[other].step.pose, ls), other);
+        }
+    }
+    std::sort(near.begin(), near.end());
+    if (near.size() > 4) near.resize(4);
+    for (const auto& [dist, other] : near) {
+      const int f = t == 0 ? id : other, b = t == 0 ? other : id;
+      const std::vector<SupportStep> middle =
+          bridgePivots(trees[0].nodes[f].step, trees[1].nodes[b].step);
+      if (middle.empty()) continue;
+      finish(f, middle, b);
+      return true;
+    }
+    return false;
+  };
+
   std::vector<std::pair<double, int>> order;
   int turn = 1;
   while (!trees[0].open.empty() || !trees[1].open.empty()) {
@@ -319,8 +415,10 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     auto add = [&](double g) {
       const std::size_t before = tree.nodes.size();
       push(t, next, g, id);
-      if (tree.nodes.size() > before && next.set.phase() == Phase::kU &&
-          meet(t, static_cast<int>(tree.nodes.size()) - 1))
+      if (tree.nodes.size() <= before) return;
+      const int added = static_cast<int>(tree.nodes.size()) - 1;
+      if (next.set.phase() == Phase::kU ? meet(t, added)
+                                        : next.set.phase() == Phase::kP && meetPivot(t, added))
         met = true;
     };
     auto tryMove = [&](const JigPose& pose, const ContactSet& set, const PivotAnchor& anchor) {
@@ -384,7 +482,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     result.message =
         result.expansions > settings_.max_expansions
             ? "no support path within " + std::to_string(settings_.max_expansions) + " expansions"
-            : "no support path exists at this resolution and these margins";
+            : "both trees were searched out without meeting (at this resolution and these margins)";
   return result;
 }
 

@@ -21,10 +21,14 @@
 /// the move makes (kinetic friction). Cost: the move's normalised length (metres over
 /// `length_scale`, radians as they are) times 1 + margin_weight / (margin + 0.01), plus
 /// `switch_cost` for a switch, so the path keeps away from the margins' edges and changes
-/// contacts seldom. The path is found when a sliding state of one tree reaches one of the
-/// other's with the same fingers by a straight slide (checked every step), or a start-tree
-/// state reaches the goal by a straight slide or by the pivot that puts the part on it
-/// (the anchor fixes the stroke and the base angle in closed form).
+/// contacts seldom. States are kept one per cell of (psi, theta, X) and contact set: the
+/// part's height Y changes no balance, only the strokes. The path is found when a sliding
+/// state of one tree reaches one of the other's with the same fingers by a straight slide,
+/// when a pivot of one tree reaches a nearby pivot of the other on another finger by a
+/// pivot, a hand-over of the stick and a pivot (a bridge: the boundary point the second
+/// finger must hold fixes the part angle of the hand-over; checked every step), or when a
+/// start-tree state reaches the goal by a straight slide or by the pivot that puts the part
+/// on it (the anchor fixes the stroke and the base angle in closed form).
 ///
 /// Deterministic: the same inputs give the same path. Analysis-time code (allocates).
 
