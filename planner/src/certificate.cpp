@@ -29,6 +29,10 @@ void checkSettings(const RbsfModel& model, const Plan& plan, const CertificateSe
     if (!(std::isfinite(x) && x > 0.0))
       throw InputError("certificate: tolerances, windows and limits must be positive");
   if (!(t.saturation_time >= 0.0)) throw InputError("certificate: saturation_time must be >= 0");
+  const HoldingSettings& h = s.holding;
+  if (!(h.max_free_time >= 0.0 && std::isfinite(h.max_free_time) && h.touch_force >= 0.0 &&
+        h.slip_rate >= 0.0))
+    throw InputError("certificate: holding's free time, touch force and slip rate must be >= 0");
   if (plan.q0.size() != model.configDim())
     throw InputError("the plan is for " + std::to_string(plan.q0.size() - 4) +
                      " fingers, the cell has " + std::to_string(model.numFingers()));
@@ -59,6 +63,8 @@ std::string verdictText(const Certificate& c) {
   if (c.worst.index >= 0 && !c.worst.success)
     text += "; worst trial " + std::to_string(c.worst.index) + ": " + c.worst.failure;
   if (!c.motion.ok()) text += "; the plan " + motionViolationText(c.motion);
+  if (c.holding_required && !c.holding.ok())
+    text += "; the joints alone do not hold the part (" + holdingText(c.holding) + ")";
   return text;
 }
 
@@ -93,6 +99,7 @@ std::string certificateReportText(const Certificate& c) {
   text += "  worst " + worstTrialText(c) + "\n";
   if (c.worst.index >= 0 && !c.worst.success) text += "  it failed: " + c.worst.failure + "\n";
   text += "  " + motionText(c.motion) + "\n";
+  if (c.holding_required) text += "  " + holdingText(c.holding) + "\n";
   return text;
 }
 
@@ -148,7 +155,10 @@ Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateS
   }
   c.success_rate = static_cast<double>(c.successes) / c.trials;
   c.motion = measureMotion(plan, model.cell().motion_limits);
-  c.certified = c.success_rate >= s.required_rate && c.motion.ok();
+  c.holding_required = !s.open_loop && !schedule.partFeedback();
+  if (c.holding_required) c.holding = measureHolding(model, plan, s.holding);
+  c.certified =
+      c.success_rate >= s.required_rate && c.motion.ok() && (!c.holding_required || c.holding.ok());
   if (all) *all = std::move(outcomes);
   return c;
 }

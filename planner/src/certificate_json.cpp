@@ -119,6 +119,12 @@ json certificateJson(const Certificate& c) {
                       {{"part_speed", m.limits.part_speed},
                        {"angular_speed", m.limits.angular_speed},
                        {"rest", pair(m.limits.rest_speed, m.limits.rest_angular_speed)}}}};
+  if (c.holding_required)
+    out["holding"] = {{"measured", c.holding.measured},
+                      {"free_time", c.holding.free_time},
+                      {"longest_free", c.holding.longest_free},
+                      {"longest_free_start", c.holding.longest_free_start},
+                      {"max_free_time", c.holding.max_free_time}};
   return out;
 }
 
@@ -202,6 +208,16 @@ Certificate readCertificateJson(const json& j, const std::string& where) {
     m.limits.part_speed = lr.num(lj, "part_speed");
     m.limits.angular_speed = lr.num(lj, "angular_speed");
     std::tie(m.limits.rest_speed, m.limits.rest_angular_speed) = lr.pairOf(lj, "rest");
+  }
+  if (j.contains("holding")) {
+    const Reader hr = rd.sub("holding");
+    const json& hj = j.at("holding");
+    c.holding_required = true;
+    c.holding.measured = hr.boolean(hj, "measured");
+    c.holding.free_time = hr.num(hj, "free_time");
+    c.holding.longest_free = hr.num(hj, "longest_free");
+    c.holding.longest_free_start = hr.num(hj, "longest_free_start");
+    c.holding.max_free_time = hr.num(hj, "max_free_time");
   }
   return c;
 }

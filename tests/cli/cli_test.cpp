@@ -376,6 +376,13 @@ TEST(PlanReorientation, SupportPlannerWritesASlowJointFedBackPlanAndItsVerdict) 
   EXPECT_EQ(j["certificate"]["law"], "joint feedback");
   EXPECT_EQ(j["certificate"]["certified"].get<bool>(), r.status == 0);
   EXPECT_NE(r.out.find("not refined"), std::string::npos) << r.out;
+  // Judged under the joint law: its motion within the limits and held by the joints alone.
+  const auto& motion = j["certificate"]["motion"];
+  EXPECT_LE(motion["peak_speed"].get<double>(), motion["limits"]["part_speed"].get<double>());
+  const auto& holding = j["certificate"]["holding"];
+  EXPECT_TRUE(holding["measured"].get<bool>());
+  EXPECT_LE(holding["longest_free"].get<double>(), holding["max_free_time"].get<double>());
+  EXPECT_NE(r.out.find("holding: the joints fix the part throughout"), std::string::npos) << r.out;
   // Handled, not thrown: slow throughout, at rest at the end.
   for (const auto& smp : j["samples"]) {
     EXPECT_LE(std::hypot(smp["v"][0].get<double>(), smp["v"][1].get<double>()), 0.25);

@@ -1,6 +1,7 @@
 // The plan's motion against the cell's motion limits (planner/plan_motion.h): peaks and
 // the final rest measured over the samples, the violation named in metres and degrees,
-// and a certificate that refuses a plan outside the limits whatever its trials.
+// and a certificate that refuses a plan outside the limits whatever its trials; and its
+// holding (plan_holding.h): a part on two frictionless tips is not held by the joints.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include "law_support.h"
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/planner/certificate.h"
+#include "rbsf/planner/plan_holding.h"
 #include "rbsf/planner/plan_motion.h"
 
 namespace rbsf::planner {
@@ -91,6 +93,27 @@ TEST(PlanMotion, ACertificateRefusesAPlanOutsideTheLimitsWhateverItsTrials) {
   EXPECT_NE(verdictText(outside).find("the plan moves the part at"), std::string::npos)
       << verdictText(outside);
   EXPECT_NE(certificateReportText(outside).find("OUTSIDE THE CELL'S LIMITS"), std::string::npos);
+}
+
+TEST(PlanHolding, APartSlidingOnTwoFrictionlessTipsIsNotHeldByTheJointsAndTheJointLawSaysSo) {
+  // Two sliding contacts give two rows: the joints do not fix the part.
+  const RbsfModel model(test::twoTipsCell());
+  const Plan plan = test::twoTipsPlan(model);
+  const PlanHolding h = measureHolding(model, plan);
+  ASSERT_TRUE(h.measured);
+  EXPECT_FALSE(h.ok());
+  EXPECT_GT(h.longest_free, 0.5 * plan.duration());
+  Cell blind = model.cell();
+  blind.sensing.part_pose.present = false;
+  CertificateSettings s;
+  s.trials = 2;
+  const Certificate joint = certify(RbsfModel(blind), plan, s);
+  EXPECT_TRUE(joint.holding_required);
+  EXPECT_FALSE(joint.certified);
+  EXPECT_NE(verdictText(joint).find("the joints alone do not hold the part"), std::string::npos)
+      << verdictText(joint);
+  // Part feedback may hold what the joints cannot: holding is not asked of it.
+  EXPECT_FALSE(certify(model, plan, s).holding_required);
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/state_layout.h"
+#include "rbsf/planner/plan_holding.h"
+#include "rbsf/planner/plan_motion.h"
 #include "rbsf/planner/support_trajectory.h"
 
 namespace rbsf::planner {
@@ -128,6 +130,30 @@ TEST(SupportTrajectory, ThePlanIsExactSlowJointFedBackAndEndsAtRestOnTheGoal) {
   const std::vector<PlanSample> again = simulateSegments(sim, plan.q0, segments, 10);
   ASSERT_EQ(again.size(), plan.samples.size());
   EXPECT_TRUE(again.back().q == last.q);
+  // Handled, not thrown: within the default motion limits at every sample and at rest.
+  EXPECT_TRUE(measureMotion(plan, MotionLimits{}).ok())
+      << motionViolationText(measureMotion(plan, MotionLimits{}));
+  // Held by the joints alone: at every sample the pressed contacts' rows fix the part.
+  const PlanHolding held = measureHolding(model, plan);
+  EXPECT_TRUE(held.ok()) << holdingText(held);
+  EXPECT_LE(held.longest_free, 0.1);
+
+  // The same plan with its contacts released for a while (f_n zeroed): a stretch within
+  // the bound passes, a longer one fails and is measured from the last held sample.
+  auto released = [&](double from, double to) {
+    Plan p = plan;
+    for (PlanSample& s : p.samples)
+      if (s.t >= from && s.t <= to) s.f_n.setZero();
+    return measureHolding(model, p);
+  };
+  const PlanHolding brief = released(1.0, 1.04);
+  EXPECT_TRUE(brief.ok()) << holdingText(brief);
+  EXPECT_GT(brief.longest_free, 0.04);
+  const PlanHolding long_free = released(1.0, 1.3);
+  EXPECT_FALSE(long_free.ok());
+  EXPECT_GE(long_free.longest_free, 0.3);
+  EXPECT_LT(long_free.longest_free, 0.3 + 0.03);  // samples every 10 steps at most
+  EXPECT_LT(long_free.longest_free_start, 1.0);
 }
 
 }  // namespace

@@ -7,7 +7,10 @@
 ///
 /// The law is the one the cell's sensing allows: part feedback (TV-LQR with the part's
 /// pose) when the cell senses the part, joint feedback (joint PD) when it does not, or
-/// the plan's inputs alone (open_loop, for comparison). Its gains are made once from the
+/// the plan's inputs alone (open_loop, for comparison). Whatever the trials, a plan is
+/// certified only when it keeps the cell's motion limits (plan_motion.h) and, under the
+/// joint law, when the joints alone fix the part along it but for stretches of at most
+/// holding.max_free_time (plan_holding.h). Its gains are made once from the
 /// cell as given (the controller knows the nominal cell, not the draw).
 ///
 /// Reproducible: trial i draws from (seed, i) alone, so the certificate is the same bits
@@ -37,6 +40,7 @@ struct CertificateSettings {
   int threads = 0;              ///< 0: one per core
   bool open_loop = false;       ///< the plan's inputs alone instead of the law
   TrialSettings trial;          ///< criteria
+  HoldingSettings holding;      ///< the plan's holding, judged under the joint law
   FeedbackSettings feedback;    ///< the law's gains (settle_time: the hold after the plan)
 };
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "rbsf/dynamics/sensing.h"
+#include "rbsf/planner/plan_holding.h"
 #include "rbsf/planner/plan_motion.h"
 
 namespace rbsf::planner {
@@ -40,8 +41,10 @@ struct Certificate {
   std::string law;  ///< "part feedback", "joint feedback" or "open loop"
   int trials = 0;
   int successes = 0;
-  double success_rate = 0.0;    ///< successes / trials
-  double required_rate = 0.95;  ///< certified when success_rate >= this and motion.ok()
+  double success_rate = 0.0;  ///< successes / trials
+  /// \brief Certified when success_rate >= this, motion.ok() and, when holding_required,
+  ///        holding.ok().
+  double required_rate = 0.95;
   bool certified = false;
   std::uint64_t seed = 0;           ///< the draws' seed: the same seed gives the same certificate
   double settle_time = 0.0;         ///< held at rest after the plan's end [s]
@@ -53,6 +56,8 @@ struct Certificate {
   Uncertainty uncertainty;          ///< what they drew from
   TrialOutcome worst;               ///< the worst trial (certificate.h), index -1 when none
   PlanMotion motion;                ///< the plan's speeds against the cell's motion limits
+  bool holding_required = false;    ///< the law feeds back the joints only
+  PlanHolding holding;              ///< whether the joints alone fix the part (when required)
 };
 
 /// \brief The certificate as JSON text (the plan file's `certificate` object, plan.h).
@@ -65,12 +70,14 @@ std::string worstTrialText(const Certificate& certificate);
 
 /// \brief The report a tool prints: "certificate (<law>, <N> trials, seed <S>): CERTIFIED" or
 ///        "NOT CERTIFIED", the share of successes, the worst trial (worstTrialText) and,
-///        when it failed, why; then the plan's motion (motionText). Lines end in newlines.
+///        when it failed, why; then the plan's motion (motionText) and, when required, its
+///        holding (holdingText). Lines end in newlines.
 std::string certificateReportText(const Certificate& certificate);
 
 /// \brief The one-line verdict: "certified: 31/32 trials (97 %)" or "NOT certified: ...,
 ///        worst trial 7: <its failure>" (and "; the plan <motionViolationText>" when the
-///        plan breaks the motion limits).
+///        plan breaks the motion limits, "; the joints alone do not hold the part ..." when
+///        its holding is required and fails).
 std::string verdictText(const Certificate& certificate);
 
 }  // namespace rbsf::planner

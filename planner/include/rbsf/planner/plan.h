@@ -48,7 +48,10 @@
 /// |                 | the plan has samples, plan_motion.h): `peak_speed` [m/s] and |
 /// |                 | `peak_speed_time` [s], `peak_angular_speed` [rad/s] and |
 /// |                 | `peak_angular_time`, `end_speed`, `end_angular_speed` and the |
-/// |                 | cell's `limits` {`part_speed`, `angular_speed`, `rest`} |
+/// |                 | cell's `limits` {`part_speed`, `angular_speed`, `rest`}; |
+/// |                 | `holding` (under the joint law, plan_holding.h): `measured`, |
+/// |                 | `free_time`, `longest_free`, `longest_free_start`, |
+/// |                 | `max_free_time` [s] |
 ///
 /// CSV (writePlanCsv): one row per sample, the columns of trajectory_sample.h.
 /// Files are written to a temporary name and renamed; a plan with a NaN is refused.
