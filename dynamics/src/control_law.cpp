@@ -15,6 +15,9 @@ namespace {
 /// Part samples that may wait for the next compute(): a sensor faster than the loop
 /// delivers a few per period at most.
 constexpr int kPendingCapacity = 16;
+/// The joint-only alpha-beta filter's largest tracking index (acceleration noise x h^2 /
+/// measurement noise): alpha 0.979, beta 1.46, well inside the stable region.
+constexpr double kMaxTrackingIndex = 10.0;
 /// Sweeps of the contact QP's dual coordinate ascent: a few, from zero each period. Rows a
 /// mode cannot meet (an indeterminate contact set's internal forces) make the ascent
 /// diverge; a few sweeps keep such a correction small (measured: 5, 15 and 60 sweeps hold
@@ -47,7 +50,10 @@ ControlLaw::ControlLaw(const FeedbackSchedule& schedule)
     const double noise = std::max(j == layout::kTauTheta ? schedule.sensing().joints.angle_noise
                                                          : schedule.sensing().joints.stroke_noise,
                                   1e-12);
-    const double lambda = schedule.settings().joint_acceleration * h * h / noise;
+    // The tracking index, capped: noise-free encoders would give the filter's limit
+    // alpha = 1, beta = 2, which is marginally stable and rings.
+    const double lambda =
+        std::min(schedule.settings().servo_acceleration * h * h / noise, kMaxTrackingIndex);
     const double r = (4.0 + lambda - std::sqrt(8.0 * lambda + lambda * lambda)) / 4.0;
     alpha_[j] = 1.0 - r * r;
     beta_[j] = 2.0 * (2.0 - alpha_[j]) - 4.0 * std::sqrt(1.0 - alpha_[j]);

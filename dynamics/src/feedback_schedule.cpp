@@ -58,10 +58,10 @@ FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory t
   if (!(std::isfinite(h_) && h_ > 0.0))
     throw InputError("feedback schedule: the control period must be positive");
   const FeedbackSettings& s = settings_;
-  for (double x :
-       {s.gain_period, s.position, s.angle, s.base_angle, s.stroke, s.speed, s.angular_speed,
-        s.base_rate, s.stroke_speed, s.input_fraction, s.natural_frequency, s.part_acceleration,
-        s.part_angular_acceleration, s.joint_acceleration, s.drift_speed, s.touch_gap})
+  for (double x : {s.gain_period, s.position, s.angle, s.base_angle, s.stroke, s.speed,
+                   s.angular_speed, s.base_rate, s.stroke_speed, s.input_fraction,
+                   s.natural_frequency, s.part_acceleration, s.part_angular_acceleration,
+                   s.joint_acceleration, s.servo_acceleration, s.drift_speed, s.touch_gap})
     if (!(std::isfinite(x) && x > 0.0))
       throw InputError("feedback settings: every weight, period and noise must be positive");
   if (!(s.settle_time >= 0.0 && s.horizon_tail >= 0.0 && s.damping_ratio >= 0.0 &&

@@ -142,6 +142,30 @@ TEST(ControlLaw, TheJointServosEstimateFindsAJointsRate) {
   EXPECT_LT(tau[0], schedule.model().cell().base.torque_limit);
 }
 
+TEST(ControlLaw, NoiseFreeEncodersGiveAJointEstimateThatSettles) {
+  // Exact encoders: the alpha-beta filter's limit (alpha 1, beta 2) would ring forever
+  // after a step, its rate swinging by 2 x step / h; the capped filter settles.
+  const RbsfModel model(test::makeCell(test::ShapeKind::kEllipse, 3));
+  const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.4, 0.0}, 0.0);
+  Sensing exact;
+  exact.part_pose.present = false;
+  exact.joints.angle_noise = exact.joints.stroke_noise = 0.0;
+  const FeedbackSchedule schedule(model, planner::makeReference(test::holdPlan(model, q0, 0.5)),
+                                  exact, SimulatorSettings{});
+  ControlLaw law(schedule);
+  VecU joints = q0.segment(3, 4), tau;
+  VecQ q, v;
+  double late_swing = 0.0;
+  for (long n = 0; n <= 400; ++n) {
+    if (n == 50) joints[1] += 1e-4;  // stroke 1 steps up 0.1 mm and stays
+    law.compute(n * 1e-3, joints, tau);
+    law.estimate(q, v);
+    if (n > 300) late_swing = std::max(late_swing, std::abs(v[layout::stroke(0)]));
+  }
+  EXPECT_LT(late_swing, 1e-5);
+  EXPECT_NEAR(q[layout::stroke(0)], joints[1], 1e-7);
+}
+
 TEST(SensorModel, PartSamplesKeepTheirRateLatencyAndStamps) {
   Sensing s;
   s.part_pose.rate = 50.0;

@@ -47,7 +47,8 @@
 /// model's part would drift off the fingers and corrupt the joints' prediction): its
 /// estimate is each joint's error from the reference, e, and rate, e', by the steady-state
 /// Kalman filter of a constant-rate error (alpha-beta; Kalata's tracking index
-/// lambda = joint_acceleration h^2 / joint noise):
+/// lambda = servo_acceleration h^2 / joint noise, at most 10: noise-free encoders would
+/// otherwise give alpha = 1, beta = 2, the filter's marginally stable limit):
 ///   e <- e + h e',  r = y_j - Theta_ref,j - e,  e <- e + alpha r,  e' <- e' + beta / h r,
 /// and the part is taken to be where the plan has it.
 ///

@@ -95,6 +95,11 @@ struct FeedbackSettings {
   // Joint PD (part_pose: none).
   double natural_frequency = 30.0;  ///< omega_n [rad/s]
   double damping_ratio = 1.0;       ///< zeta
+  /// \brief The joint-only estimate's process noise: the joints' acceleration off the
+  ///        reference it expects [m/s^2, rad/s^2]. Ten times less than joint_acceleration:
+  ///        the joint law runs slow plans, and a rate estimate that follows the encoders'
+  ///        noise shakes the part loose (docs/notes/2026-11-25-support-planner.md).
+  double servo_acceleration = 0.2;
   // Kalman filter: process noise intensities [unit / s^2 / sqrt(Hz)] and drift [unit / s /
   // sqrt(Hz)].
   double part_acceleration = 0.2;          ///< part x, y [m/s^2]
