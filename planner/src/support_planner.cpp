@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 
 namespace rbsf::planner {
 
@@ -21,14 +22,26 @@ bool SupportPlanner::solve(const Problem& problem, Plan& plan) {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point t0 = Clock::now();
   message_.clear();
-  SupportSearchSettings ss = settings_.search;
-  ss.time_limit = settings_.time_limit;
-  SupportSearch search(model_, ss);
-  const SupportPath path =
-      search.search(problem.start, problem.start_theta, problem.goal, settings_.cancel);
-  expansions_ = path.expansions;
+  expansions_ = 0;
+  friction_use_ = 0.0;
+  SupportPath path;
+  std::unique_ptr<SupportSearch> search;
+  for (double use : settings_.friction_uses) {
+    SupportSearchSettings ss = settings_.search;
+    ss.support.balance.friction_use = use;
+    ss.time_limit = settings_.time_limit - std::chrono::duration<double>(Clock::now() - t0).count();
+    if (ss.time_limit <= 0.0) break;
+    search = std::make_unique<SupportSearch>(model_, ss);
+    path = search->search(problem.start, problem.start_theta, problem.goal, settings_.cancel);
+    expansions_ += path.expansions;
+    if (path.found) {
+      friction_use_ = use;
+      break;
+    }
+    if (settings_.cancel != nullptr && settings_.cancel->load()) break;
+  }
   if (!path.found) {
-    message_ = path.message;
+    message_ = path.message.empty() ? "no time left for a search" : path.message;
     plan = Plan{};
     return false;
   }
@@ -37,14 +50,14 @@ bool SupportPlanner::solve(const Problem& problem, Plan& plan) {
   const MotionLimits& limits = model_.cell().motion_limits;
   timing.part_speed = std::min(timing.part_speed, limits.part_speed);
   timing.angular_speed = std::min(timing.angular_speed, 0.5 * limits.angular_speed);
-  const ReferenceTrajectory reference = supportReference(model_, search.geometry(), path, timing);
+  const ReferenceTrajectory reference = supportReference(model_, search->geometry(), path, timing);
   plan = closedLoopPlan(model_, reference, settings_.simulator, settings_.feedback, problem.goal,
                         settings_.position_tolerance, settings_.angle_tolerance,
                         settings_.sample_steps);
   plan.planner = "support";
   plan.start = problem.start;
   plan.start_theta = problem.start_theta;
-  plan.propagations = static_cast<std::uint64_t>(path.expansions);
+  plan.propagations = static_cast<std::uint64_t>(expansions_);
   plan.planning_time = std::chrono::duration<double>(Clock::now() - t0).count();
   return true;
 }

@@ -188,6 +188,8 @@ int run(int argc, char** argv) {
       std::printf("no support path: %s (%ld expansions)\n", sp.message().c_str(), sp.expansions());
       return kExitTimeLimit;
     }
+    std::printf("support path: sticking forces within %.2f of the friction cone, %ld expansions\n",
+                sp.frictionUse(), sp.expansions());
   } else {
     found = rp.solve(problem, plan);
     if (tty) std::fprintf(stderr, "\n");

@@ -22,7 +22,11 @@
 /// an exact linear program (solveLp). The set is **balanced** when sigma >= 0: every
 /// touching contact pressed by at least normal_margin of the part's weight and the sticking
 /// forces inside cones shrunk to friction_use mu_s, so a plant with 20 % less friction or a
-/// few per cent more mass keeps the same contact modes.
+/// few per cent more mass keeps the same contact modes. The default 0.45 leaves more than
+/// the 0.8 a 20 % draw needs: with three tips touching the split of the forces is not the
+/// LP's but the plant's (statically indeterminate), and at 0.6 the support plans of the
+/// default cell lost 3-8 of 32 trials to low-friction draws, at 0.45 none
+/// (docs/notes/2026-11-25-support-planner.md).
 ///
 /// **Joint-determined**: the rows of the set (2 per sticking contact, 1 per sliding one)
 /// fix the part's 3 degrees of freedom when the finger joints are held, i.e. their object
@@ -73,7 +77,7 @@ struct ContactSet {
 /// \brief Margins of contactBalance() (file comment).
 struct BalanceSettings {
   double normal_margin = 0.08;     ///< every touching f_n >= this x m_o g0 [N/N]
-  double friction_use = 0.6;       ///< sticking |f_t| <= this x mu_s f_n
+  double friction_use = 0.45;      ///< sticking |f_t| <= this x mu_s f_n
   double determined_ratio = 0.05;  ///< smallest / largest singular value of the object rows
   double slip_rate = 1e-4;         ///< |T_i^T v| above this picks the kinetic friction sign [m/s]
 };

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <string>
+#include <vector>
 
 #include "rbsf/dynamics/feedback_schedule.h"
 #include "rbsf/planner/plan.h"
@@ -22,9 +23,13 @@ namespace rbsf::planner {
 struct SupportPlannerSettings {
   SupportSearchSettings search = defaultSearch();
   SupportTiming timing;
-  FeedbackSettings feedback;                  ///< the law of the closed-loop run
-  SimulatorSettings simulator;                ///< the plan's physics
-  double time_limit = 30.0;                   ///< search wall time [s]
+  FeedbackSettings feedback;    ///< the law of the closed-loop run
+  SimulatorSettings simulator;  ///< the plan's physics
+  double time_limit = 30.0;     ///< search wall time, all attempts [s]
+  /// \brief The sticking forces' share of the friction cone (BalanceSettings::friction_use)
+  ///        of each search attempt, the strongest margin first: the next is tried when a
+  ///        search finds no path within the time left.
+  std::vector<double> friction_uses = {0.45, 0.6};
   double position_tolerance = 0.01;           ///< [m]
   double angle_tolerance = 2.0 * M_PI / 180;  ///< [rad]
   int sample_steps = 20;                      ///< plan samples every this many steps
@@ -46,8 +51,10 @@ class SupportPlanner {
 
   /// \brief Why the last solve() found nothing, empty otherwise.
   const std::string& message() const { return message_; }
-  /// \brief Expansions of the last search.
+  /// \brief Expansions of the last solve(), every attempt.
   long expansions() const { return expansions_; }
+  /// \brief The friction use of the attempt that found the path (0 when none did).
+  double frictionUse() const { return friction_use_; }
   const SupportPlannerSettings& settings() const { return settings_; }
 
  private:
@@ -55,6 +62,7 @@ class SupportPlanner {
   SupportPlannerSettings settings_;
   std::string message_;
   long expansions_ = 0;
+  double friction_use_ = 0.0;
 };
 
 }  // namespace rbsf::planner
