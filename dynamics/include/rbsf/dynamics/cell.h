@@ -52,10 +52,10 @@ struct Cell {
   std::vector<FingerParams> fingers;
   ObjectParams object;
   FrictionParams friction;
-  Sensing sensing;          ///< what the cell measures (sensing.h; defaults when absent)
-  Uncertainty uncertainty;  ///< what a plan must tolerate (sensing.h; defaults when absent)
+  Sensing sensing;             ///< what the cell measures (sensing.h; defaults when absent)
+  Uncertainty uncertainty;     ///< what a plan must tolerate (sensing.h; defaults when absent)
   MotionLimits motion_limits;  ///< how fast a plan may move the part (motion_limits.h)
-  std::string name;         ///< file name or label, for messages
+  std::string name;            ///< file name or label, for messages
 
   /// \brief Number of fingers m.
   int numFingers() const { return static_cast<int>(fingers.size()); }
