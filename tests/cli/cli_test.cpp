@@ -362,6 +362,28 @@ bool allFinite(const nlohmann::json& j) {
   return true;
 }
 
+TEST(PlanReorientation, ASupportPathWhoseRunDropsThePartIsApproximateAndSaysSo) {
+  // +30 deg: the short way has no support path; the long way round's closed-loop run loses
+  // the part. Exit 3, the drop said in metres and degrees, the plan written as approximate
+  // and refused by its certificate (motion outside the limits, not held by the joints).
+  const std::string out = writeTemp("support_drop.json", "");
+  const Result r = run(kPlan + " --cell " + kCells +
+                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,30deg --planner support"
+                       " --quiet --trials 2 --out " +
+                       out);
+  ASSERT_EQ(r.status, 3) << r.out << r.err;
+  EXPECT_NE(r.out.find("the support path's closed-loop run drops the part: it ends"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("tolerance units"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(slurp(out));
+  EXPECT_TRUE(allFinite(j));
+  EXPECT_EQ(j["status"], "approximate");
+  EXPECT_FALSE(j["certificate"]["certified"].get<bool>());
+  EXPECT_GT(j["certificate"]["motion"]["peak_speed"].get<double>(), 0.25);
+  EXPECT_GT(j["certificate"]["holding"]["longest_free"].get<double>(), 0.1);
+}
+
 TEST(PlanReorientation, SupportPlannerWritesASlowJointFedBackPlanAndItsVerdict) {
   const std::string out = writeTemp("support.json", "");
   const Result r = run(kPlan + " --cell " + kCells +

@@ -20,7 +20,9 @@
 
 #include "plan_outputs.h"
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/state_layout.h"
 #include "rbsf/planner/certificate.h"
+#include "rbsf/planner/goal.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/planner/support_planner.h"
 #include "rbsf/tools/cli_values.h"
@@ -252,10 +254,29 @@ int run(int argc, char** argv) {
     if (plan.certificate.ran) printCertificate(plan.certificate);
     outputs.write(model, plan);
   }
+  if (support) {
+    // The path was found; its closed-loop run missed the goal (the part left the supports).
+    if (plan.samples.empty() || !plan.samples.back().q.allFinite()) {
+      std::printf("no exact plan: the support path's closed-loop run lost the part%s\n",
+                  outputs.any() ? ", approximate plan written" : "");
+      return kExitTimeLimit;
+    }
+    const planner::PlanSample& end = plan.samples.back();
+    std::printf(
+        "no exact plan: the support path's closed-loop run %sends %.3g m and %.3g deg from "
+        "the goal%s\n",
+        end.f_n.maxCoeff() > 0.0 ? "" : "drops the part: it ",
+        std::hypot(end.q[layout::kX] - problem.goal.x, end.q[layout::kY] - problem.goal.y),
+        std::abs(planner::goalAngleError(end.q[layout::kPhi], problem.goal.phi,
+                                         problem.absolute_angle)) *
+            180.0 / M_PI,
+        outputs.any() ? ", approximate plan written" : "");
+    return kExitTimeLimit;
+  }
   std::printf(
       "no exact plan within %.3g s: best distance %.3g (tolerance units: 1 = 1 cm or "
       "2 deg)%s; %llu propagations\n",
-      settings.time_limit, support ? plan.goal_distance : rp.bestDistance(),
+      settings.time_limit, rp.bestDistance(),
       found && outputs.any() ? ", approximate plan written" : "",
       static_cast<unsigned long long>(rp.propagations()));
   return kExitTimeLimit;
