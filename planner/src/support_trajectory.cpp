@@ -114,19 +114,21 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
       const std::uint32_t joins = to.touching & ~from.touching;
       const std::uint32_t leaves = from.touching & ~to.touching;
       const std::optional<VecQ> q_to = geometry.configuration(pose, to, false);
+      // Finger f alone strokes from `a` to `b` (rest to rest) while `carrier` holds the part.
+      auto moveFinger = [&](const ContactSet& carrier, int f, double a, double b) {
+        Stretch r;
+        r.kind = Stretch::kFinger;
+        r.set = carrier;
+        r.base = pose;
+        r.finger = f;
+        r.from = a;
+        r.to = b;
+        r.duration = std::max(timing.min_run_time, 1.875 * std::abs(b - a) / timing.stroke_speed);
+        stretches.push_back(r);
+      };
       for (int f = 0; f < m; ++f)
-        if ((joins >> f) & 1u) {
-          Stretch r;
-          r.kind = Stretch::kFinger;
-          r.set = from;
-          r.base = pose;
-          r.finger = f;
-          r.from = cell.fingers[f].stroke_min;
-          r.to = (*q_to)[layout::stroke(f)];
-          r.duration =
-              std::max(timing.min_run_time, 1.875 * std::abs(r.to - r.from) / timing.stroke_speed);
-          stretches.push_back(r);
-        }
+        if ((joins >> f) & 1u)
+          moveFinger(from, f, cell.fingers[f].stroke_min, (*q_to)[layout::stroke(f)]);
       Stretch ramp;
       ramp.kind = Stretch::kRamp;
       ramp.set = ContactSet{from.touching | to.touching, from.sticking & to.sticking};
@@ -138,18 +140,8 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
       stretches.push_back(ramp);
       const std::optional<VecQ> q_from = geometry.configuration(pose, from, false);
       for (int f = 0; f < m; ++f)
-        if ((leaves >> f) & 1u) {
-          Stretch r;
-          r.kind = Stretch::kFinger;
-          r.set = to;
-          r.base = pose;
-          r.finger = f;
-          r.from = (*q_from)[layout::stroke(f)];
-          r.to = cell.fingers[f].stroke_min;
-          r.duration =
-              std::max(timing.min_run_time, 1.875 * std::abs(r.to - r.from) / timing.stroke_speed);
-          stretches.push_back(r);
-        }
+        if ((leaves >> f) & 1u)
+          moveFinger(to, f, (*q_from)[layout::stroke(f)], cell.fingers[f].stroke_min);
     }
     if (j > i) {  // a run (a set held at one pose alone has none)
       Stretch r;

@@ -11,6 +11,7 @@
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/planner/plan_holding.h"
 #include "rbsf/planner/plan_motion.h"
+#include "rbsf/planner/support_planner.h"
 #include "rbsf/planner/support_trajectory.h"
 
 namespace rbsf::planner {
@@ -21,14 +22,8 @@ const RbsfModel& defaultModel() {
   return model;
 }
 
-SupportSearchSettings searchSettings() {
-  SupportSearchSettings s;
-  s.angle_step = 5.0 * M_PI / 180;
-  s.xy_step = 0.02;
-  s.heuristic_weight = 5.0;
-  s.support.min_normal_cosine = 0.1;
-  return s;
-}
+/// The search the support planner runs (5 deg and 2 cm steps, greedy).
+SupportSearchSettings searchSettings() { return SupportPlannerSettings::defaultSearch(); }
 
 /// The world position of boundary point xi of the part at configuration q.
 Vec2 partPoint(const RbsfModel& model, const VecQ& q, double xi) {
