@@ -127,65 +127,56 @@ void ReorientationController::Impl::finish(PlanOutcome how, std::string message,
 void ReorientationController::Impl::run(ReorientationRequest request) {
   double best = 0.0;
   try {
-    planner::PlannerSettings settings = request.planner;
-    settings.cancel = &cancel;
-    settings.progress = std::move(request.progress);
-    planner::ReorientationPlanner search(model, std::move(settings));
-    planner::Plan plan;
-    const bool found = search.solve(request.problem, plan);
-    best = search.bestDistance();
-    if (cancel.load()) {
-      finish(PlanOutcome::kCancelled,
-             "cancelled after " + std::to_string(plan.planning_time) + " s", std::move(plan), best,
-             false);
-      return;
-    }
-    if (!found) {
-      finish(PlanOutcome::kNoPath, "the planner produced no path", {}, best, false);
-      return;
-    }
-    planner::CertificateSettings certificate = request.certificate;
-    certificate.trial.position_tolerance = request.planner.position_tolerance;
-    certificate.trial.angle_tolerance = request.planner.angle_tolerance;
-    certificate.feedback = feedback;
-    PlanOutcome how = PlanOutcome::kExact;
+    planner::PipelineSettings pipeline;
+    pipeline.method = request.method;
+    pipeline.max_attempts = request.max_attempts;
+    pipeline.planner = request.planner;
+    pipeline.planner.cancel = &cancel;
+    pipeline.planner.progress = std::move(request.progress);
+    pipeline.support.feedback = feedback;
+    pipeline.certificate = request.certificate;
+    pipeline.certificate.feedback = feedback;
     std::string note;
-    if (plan.status == "exact" && request.optimize) {
 #ifdef RBSF_CONTROLLER_WITH_TRAJOPT
-      trajopt::OptimizerSettings opt = request.optimizer;
-      opt.cancel = &cancel;
-      const trajopt::PlanOptimizer optimizer(model, opt);
-      trajopt::RefineSettings refine;
-      refine.certificate = certificate;
-      trajopt::RefineOutcome refined = trajopt::refinePlan(optimizer, plan, refine);
-      if (refined.refined) how = PlanOutcome::kOptimized;
-      note = refined.refined ? "" : refined.reason + "; ";
-      plan = std::move(refined.plan);
+    trajopt::OptimizerSettings opt = request.optimizer;
+    opt.cancel = &cancel;
+    const trajopt::PlanOptimizer optimizer(model, opt);
+    if (request.optimize) pipeline.refine = trajopt::refinementStep(optimizer);
 #else
-      note = "optimisation not used: rbsf was built without rbsf::trajopt; ";
-      plan.certificate = planner::certify(model, plan, certificate, nullptr, &cancel);
+    if (request.optimize) note = "optimisation not used: rbsf was built without rbsf::trajopt; ";
 #endif
-    } else {
-      plan.certificate = planner::certify(model, plan, certificate, nullptr, &cancel);
+    planner::ReorientationPipeline pipe(model, std::move(pipeline));
+    planner::PipelineOutcome out = pipe.run(request.problem);
+    best = out.best_distance;
+    planner::Plan& plan = out.plan;
+    const planner::PipelineAttempt* chosen = out.chosen >= 0 ? &out.attempts[out.chosen] : nullptr;
+    if (chosen != nullptr && !chosen->refined && !chosen->note.empty()) note += chosen->note + "; ";
+    switch (out.status) {
+      case planner::PipelineStatus::kCancelled:
+        plan.certificate = {};
+        finish(PlanOutcome::kCancelled, "cancelled after " + std::to_string(out.wall_time) + " s",
+               std::move(plan), best, false);
+        return;
+      case planner::PipelineStatus::kNoPlan:
+        finish(PlanOutcome::kNoPath, "the planner produced no path", {}, best, false);
+        return;
+      case planner::PipelineStatus::kApproximate:
+        note += planner::verdictText(plan.certificate);
+        finish(PlanOutcome::kApproximate,
+               "time limit: closest approach " + std::to_string(best) + " tolerance units; " + note,
+               std::move(plan), best, request.accept_approximate);
+        return;
+      case planner::PipelineStatus::kNotCertified:
+        note += planner::verdictText(plan.certificate);
+        finish(PlanOutcome::kNotCertified, std::move(note), std::move(plan), best,
+               request.accept_uncertified);
+        return;
+      case planner::PipelineStatus::kCertified:
+        note += planner::verdictText(plan.certificate);
+        finish(chosen->refined ? PlanOutcome::kOptimized : PlanOutcome::kExact, std::move(note),
+               std::move(plan), best, true);
+        return;
     }
-    if (cancel.load()) {
-      finish(PlanOutcome::kCancelled, "cancelled while optimising or certifying", std::move(plan),
-             best, false);
-      return;
-    }
-    note += planner::verdictText(plan.certificate);
-    if (plan.status != "exact") {
-      finish(PlanOutcome::kApproximate,
-             "time limit: closest approach " + std::to_string(best) + " tolerance units; " + note,
-             std::move(plan), best, request.accept_approximate);
-      return;
-    }
-    if (!plan.certificate.certified) {
-      finish(PlanOutcome::kNotCertified, std::move(note), std::move(plan), best,
-             request.accept_uncertified);
-      return;
-    }
-    finish(how, std::move(note), std::move(plan), best, true);
   } catch (const InputError& e) {
     finish(PlanOutcome::kInputError, e.what(), {}, best, false);
   } catch (const std::exception& e) {

@@ -103,6 +103,18 @@ std::string certificateReportText(const Certificate& c) {
   return text;
 }
 
+bool betterCertificate(const Certificate& a, const Certificate& b) {
+  auto rank = [](const Certificate& c) {
+    const TrialOutcome& w = c.worst;
+    const double error =
+        w.dropped || w.index < 0
+            ? std::numeric_limits<double>::infinity()
+            : std::max(w.position_error / c.position_tolerance, w.angle_error / c.angle_tolerance);
+    return std::make_tuple(c.ran, c.certified, c.successes, -error);
+  };
+  return rank(a) > rank(b);
+}
+
 Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateSettings& s,
                     std::vector<TrialOutcome>* all, const std::atomic<bool>* cancel) {
   checkSettings(model, plan, s);

@@ -294,10 +294,11 @@ const std::string kPlan = RBSF_PLAN_EXE;
 
 TEST(PlanReorientation, SolvesASmallProblemAndWritesJsonAndCsv) {
   const std::string out = writeTemp("plan.json", ""), csv = writeTemp("plan.csv", "");
-  const Result r = run(kPlan + " --cell " + kCells +
-                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 7"
-                       " --time-limit 120 --quiet --no-optimize --trials 4 --out " +
-                       out + " --csv " + csv);
+  const Result r = run(
+      kPlan + " --cell " + kCells +
+      "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 7"
+      " --time-limit 120 --quiet --no-optimize --trials 4 --planner KPIECE1 --attempts 1 --out " +
+      out + " --csv " + csv);
   // 0: the plan written is certified; 4: it is not, and stderr says so (nothing else).
   ASSERT_TRUE(r.status == 0 || r.status == 4) << r.status << "\n" << r.err;
   const auto j = nlohmann::json::parse(slurp(out));
@@ -362,6 +363,43 @@ bool allFinite(const nlohmann::json& j) {
   return true;
 }
 
+TEST(PlanReorientation, TheDefaultPipelineWritesTheFirstCertifiedPlan) {
+  // -30 deg: the support planner's plan certifies, so no kinodynamic search runs.
+  const std::string out = writeTemp("pipeline.json", "");
+  const Result r = run(kPlan + " --cell " + kCells +
+                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-30deg --quiet --trials 4"
+                       " --out " +
+                       out);
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out));
+  EXPECT_EQ(j["planner"], "support");
+  EXPECT_TRUE(j["certificate"]["certified"].get<bool>());
+  EXPECT_NE(r.out.find("support path: "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("KPIECE1"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("chosen: "), std::string::npos) << r.out;  // one attempt
+}
+
+TEST(PlanReorientation, UncertifiedPlansAreFollowedByTheNextSeedAndTheBestIsWritten) {
+  // Kinodynamic plans of the default cell break its motion limits: neither seed certifies,
+  // both run, and the plan written is the chosen attempt's, marked not certified (exit 4).
+  const std::string out = writeTemp("pipeline_seeds.json", "");
+  const Result r = run(kPlan + " --cell " + kCells +
+                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --planner KPIECE1"
+                       " --seed 7 --attempts 2 --time-limit 120 --no-optimize --quiet --trials 2"
+                       " --out " +
+                       out);
+  ASSERT_EQ(r.status, 4) << r.out << r.err;
+  EXPECT_NE(r.err.find("NOT certified"), std::string::npos) << r.err;
+  const auto at = r.out.find("chosen: attempt ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" of 2 (KPIECE1, seed "), std::string::npos) << r.out;
+  const int chosen = std::stoi(r.out.substr(at + 16));
+  const auto j = nlohmann::json::parse(slurp(out));
+  EXPECT_EQ(j["seed"].get<int>(), 6 + chosen);  // attempt 1 is seed 7, attempt 2 seed 8
+  EXPECT_FALSE(j["certificate"]["certified"].get<bool>());
+}
+
 TEST(PlanReorientation, ASupportPathWhoseRunDropsThePartIsApproximateAndSaysSo) {
   // +30 deg: the short way has no support path; the long way round's closed-loop run loses
   // the part. Exit 3, the drop said in metres and degrees, the plan written as approximate
@@ -418,7 +456,8 @@ TEST(PlanReorientation, SupportPlannerWritesASlowJointFedBackPlanAndItsVerdict) 
 TEST(PlanReorientation, OptimisesByDefaultAndWritesTheBetterCertifiedPlan) {
   const std::string out = writeTemp("opt_plan.json", "");
   const Result r = run(kPlan + " --cell " + kCells +
-                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 5"
+                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 5 --planner "
+                       "KPIECE1 --attempts 1"
                        " --time-limit 120 --knots 30 --optimize-time-limit 120 --trials 4 "
                        "--quiet --out " +
                        out);
@@ -462,7 +501,8 @@ TEST(PlanReorientation, OptimizeToleranceReachesIpopt) {
   auto iterations = [&](const std::string& extra) {
     const std::string out = writeTemp("tol_plan.json", "");
     const Result r = run(kPlan + " --cell " + kCells +
-                         "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 5"
+                         "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 5 "
+                         "--planner KPIECE1 --attempts 1"
                          " --time-limit 120 --knots 30 --optimize-time-limit 120 --quiet --out " +
                          out + " " + extra);
     EXPECT_TRUE(r.status == 0 || r.status == 4) << r.status << "\n" << r.err;
@@ -479,7 +519,8 @@ TEST(PlanReorientation, NotCertifiedFirstSolveIsRetriedAndEachSolveIsNamed) {
   // not chosen is named in the message with its certificate or its failure.
   const std::string out = writeTemp("plan90_refined.json", "");
   const Result r = run(kPlan + " --cell " + kCells +
-                       "default.yaml --start 0.1,0.40,0 --goal=-0.1,0.40,-90deg --seed 1"
+                       "default.yaml --start 0.1,0.40,0 --goal=-0.1,0.40,-90deg --seed 1 --planner "
+                       "KPIECE1 --attempts 1"
                        " --time-limit 120 --trials 4 --quiet --out " +
                        out);
   ASSERT_TRUE(r.status == 0 || r.status == 4) << r.err;
@@ -512,7 +553,7 @@ TEST(PlanReorientation, AbsoluteGoalAngleIsATotalTurn) {
   // search gets nowhere near (the printed best distance is in tolerance units, 2 deg each).
   const std::string base = kPlan + " --cell " + kCells +
                            "default.yaml --quiet --no-optimize --start 0.1,0.40,0 "
-                           "--goal 0.1,0.40,345deg --seed 7 ";
+                           "--goal 0.1,0.40,345deg --seed 7 --planner KPIECE1 --attempts 1 ";
   const Result nearest = run(base + "--time-limit 60 --trials 2");
   EXPECT_TRUE(nearest.status == 0 || nearest.status == 4) << nearest.err;  // a plan written
   EXPECT_NE(nearest.out.find("exact plan"), std::string::npos) << nearest.out;

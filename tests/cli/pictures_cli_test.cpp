@@ -25,7 +25,7 @@ const std::string kSimulateExe = RBSF_SIMULATE_EXE;
 const std::string kCellDir = std::string(RBSF_SOURCE_DIR) + "/cells/";
 const std::string kSmall = kPlanExe + " --cell " + kCellDir +
                            "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 7"
-                           " --time-limit 120 --quiet";
+                           " --time-limit 120 --quiet --planner KPIECE1 --attempts 1";
 // The optimiser, bounded by iterations (not wall time) so that its result is deterministic.
 const std::string kOptimised = " --knots 30 --optimize-time-limit 600 --optimize-iterations 150";
 
@@ -117,8 +117,8 @@ TEST(PlanPictures, SigintWritesTheBestPlanSoFarAndExits130) {
     freopen("/dev/null", "w", stdout);
     const std::string cell = kCellDir + "default.yaml";
     execl(kPlanExe.c_str(), kPlanExe.c_str(), "--cell", cell.c_str(), "--start", "0.1,0.40,0",
-          "--goal", "0.3,0.40,90deg", "--time-limit", "600", "--quiet", "--no-optimize", "--out",
-          out.c_str(), "--svg", svg.c_str(), static_cast<char*>(nullptr));
+          "--goal", "0.3,0.40,90deg", "--time-limit", "600", "--planner", "KPIECE1", "--quiet",
+          "--no-optimize", "--out", out.c_str(), "--svg", svg.c_str(), static_cast<char*>(nullptr));
     _exit(99);
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));

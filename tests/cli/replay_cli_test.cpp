@@ -24,7 +24,8 @@ const std::string& smallPlan() {
     const std::string out = writeTemp("replay_plan.json", "");
     const Result r = run(kPlanExe + " --cell " + kCellsDir +
                          "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 7"
-                         " --time-limit 120 --quiet --no-optimize --trials 6 --trial-seed 3"
+                         " --time-limit 120 --quiet --no-optimize --trials 6 --trial-seed 3 "
+                         "--planner KPIECE1 --attempts 1"
                          " --out " +
                          out);
     EXPECT_TRUE(r.status == 0 || r.status == 4) << r.err;

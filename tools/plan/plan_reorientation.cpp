@@ -1,9 +1,10 @@
-// plan-reorientation: torques tau(t) that take the part from where it rests to a goal pose
-// (kinodynamic search on OMPL with the hybrid contact simulator as propagator), refined by
-// the trajectory optimiser unless --no-optimize, and certified: every plan written is run
-// --trials times closed loop under the cell's sensing and uncertainty
-// (rbsf/planner/certificate.h); of the planner's plan and the refined plan the one with
-// the better certificate is written (rbsf/trajopt/plan_refinement.h).
+// plan-reorientation: torques tau(t) that take the part from where it rests to a goal pose.
+// Plan, refine and certify until a plan certifies or the time limit is spent
+// (rbsf/planner/reorientation_pipeline.h): the support planner, then the kinodynamic
+// planner seed after seed; each exact kinodynamic plan refined by the trajectory optimiser
+// unless --no-optimize (rbsf/trajopt/plan_refinement.h); every plan run --trials times
+// closed loop under the cell's sensing and uncertainty (rbsf/planner/certificate.h). The
+// first certified plan is written, else the best one, marked not certified.
 //
 // Exit status: 0 a certified plan written; 4 an exact plan written but not certified
 // (verdict and worst trial on stderr); 3 time limit without an exact plan (best distance
@@ -13,6 +14,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -23,8 +25,7 @@
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/planner/certificate.h"
 #include "rbsf/planner/goal.h"
-#include "rbsf/planner/reorientation_planner.h"
-#include "rbsf/planner/support_planner.h"
+#include "rbsf/planner/reorientation_pipeline.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
 #include "rbsf/tools/tool_main.h"
@@ -38,9 +39,10 @@ constexpr int kExitNotCertified = 4;
 
 struct Options {
   std::string cell, start, goal,
-      start_theta = "0", planner = "KPIECE1", time_limit = "30", seed = "1", out, csv, svg, report,
-      svg_still = "0", knots = "100", optimize_time_limit = "30", optimize_iterations = "500",
-      optimize_tolerance = "1e-6", goal_angle = "nearest", trials = "32", trial_seed = "1";
+      start_theta = "0", planner = "auto", attempts = "0", time_limit = "30", seed = "1", out, csv,
+      svg, report, svg_still = "0", knots = "100", optimize_time_limit = "30",
+      optimize_iterations = "500", optimize_tolerance = "1e-6", goal_angle = "nearest",
+      trials = "32", trial_seed = "1";
   bool quiet = false, no_optimize = false, reproducible = false, no_decisive_modes = false;
 };
 
@@ -73,9 +75,11 @@ int run(int argc, char** argv) {
       "Every plan written is certified: replayed --trials times in closed loop under the "
       "cell's sensing and uncertainty (cell keys sensing and uncertainty) and judged by "
       "outcome: the part ends at rest within 1 cm and 2 degrees of the goal, never dropped, "
-      "inputs within their limits; certified when 95 % of the trials succeed. Exact plans "
-      "are refined by the trajectory optimiser (unless --no-optimize) and the plan with the "
-      "better certificate is written.\n"
+      "inputs within their limits, the plan within the cell's motion limits; certified when "
+      "95 % of the trials succeed. Planning goes on until a plan certifies: the support "
+      "planner, then kinodynamic seeds while --time-limit lasts; exact kinodynamic plans are "
+      "refined by the trajectory optimiser (unless --no-optimize). The first certified plan "
+      "is written, else the best one found, marked not certified.\n"
       "Exit status: 0 a certified plan written; 4 an exact plan written but not certified "
       "(verdict on stderr); 3 time limit without an exact plan (best distance printed; the "
       "approximate plan written); 2 bad input (option, value, file, a start the fingers "
@@ -93,10 +97,16 @@ int run(int argc, char** argv) {
                  "three quarters of a clockwise turn");
   app.add_option("--start-theta", o.start_theta, "base angle at the start (default 0)");
   app.add_option("--planner", o.planner,
-                 "KPIECE1 (default), RRT, SST, EST or PDST (kinodynamic search), or support "
-                 "(slow quasi-static supports held by the joints, see README)");
-  app.add_option("--time-limit", o.time_limit, "seconds (default 30)");
-  app.add_option("--seed", o.seed, "random seed, positive integer (default 1)");
+                 "auto (default): the support planner, then KPIECE1 with seeds --seed, "
+                 "--seed + 1, ... until a plan certifies; support: slow quasi-static supports "
+                 "held by the joints only; KPIECE1, RRT, SST, EST or PDST: that kinodynamic "
+                 "planner only, seed after seed");
+  app.add_option("--time-limit", o.time_limit,
+                 "search budget of every attempt together, seconds (default 30; auto gives "
+                 "the support planner half)");
+  app.add_option("--seed", o.seed, "first kinodynamic seed, positive integer (default 1)");
+  app.add_option("--attempts", o.attempts,
+                 "kinodynamic searches at most (default 0: while the time limit lasts)");
   app.add_option("--out", o.out, "write the plan as JSON");
   app.add_option("--csv", o.csv, "write the sampled trajectory as CSV");
   app.add_option("--svg", o.svg, "write an animated SVG of the plan");
@@ -126,13 +136,24 @@ int run(int argc, char** argv) {
   const PlanOutputs outputs({o.out, o.csv, o.svg, o.report, o.reproducible,
                              parseNumber(o.svg_still, "--svg-still"), o.cell});
 
-  const bool support = o.planner == "support";
-  planner::PlannerSettings settings;
-  settings.planner = support ? "KPIECE1" : o.planner;
+  using Method = planner::PipelineSettings::Method;
+  const auto& names = planner::plannerNames();
+  if (o.planner != "auto" && o.planner != "support" &&
+      std::find(names.begin(), names.end(), o.planner) == names.end())
+    throw InputError("--planner: unknown planner '" + o.planner +
+                     "' (choose from auto, support, KPIECE1, RRT, SST, EST, PDST)");
+  planner::PipelineSettings pipeline;
+  pipeline.method = o.planner == "auto"      ? Method::kAuto
+                    : o.planner == "support" ? Method::kSupport
+                                             : Method::kKinodynamic;
+  planner::PlannerSettings& settings = pipeline.planner;
+  settings.planner = pipeline.method == Method::kKinodynamic ? o.planner : "KPIECE1";
   settings.decisive_modes.enabled = !o.no_decisive_modes;
   settings.time_limit = parseNumber(o.time_limit, "--time-limit");
-  if (settings.time_limit <= 0.0) throw InputError("--time-limit: must be positive");
+  if (!(settings.time_limit > 0.0 && settings.time_limit <= 1e6))
+    throw InputError("--time-limit: must be positive, at most 1e6 s (got " + o.time_limit + ")");
   settings.seed = static_cast<std::uint32_t>(parseInteger(o.seed, "--seed", 1, 4294967295LL));
+  pipeline.max_attempts = static_cast<int>(parseInteger(o.attempts, "--attempts", 0, 1000000));
   trajopt::OptimizerSettings opt_settings;
   opt_settings.knots = static_cast<int>(parseInteger(o.knots, "--knots", 2, 100000));
   opt_settings.max_solve_time = parseNumber(o.optimize_time_limit, "--optimize-time-limit");
@@ -143,8 +164,7 @@ int run(int argc, char** argv) {
   opt_settings.tolerance = parseNumber(o.optimize_tolerance, "--optimize-tolerance");
   if (!(opt_settings.tolerance > 0.0 && opt_settings.tolerance <= 1.0))
     throw InputError("--optimize-tolerance: must be in (0, 1] (got " + o.optimize_tolerance + ")");
-  trajopt::RefineSettings refine;
-  planner::CertificateSettings& certificate = refine.certificate;
+  planner::CertificateSettings& certificate = pipeline.certificate;
   certificate.trials = static_cast<int>(parseInteger(o.trials, "--trials", 1, 100000));
   certificate.seed =
       static_cast<std::uint64_t>(parseInteger(o.trial_seed, "--trial-seed", 1, 1LL << 53));
@@ -157,104 +177,97 @@ int run(int argc, char** argv) {
   problem.start_theta = parseAngle(o.start_theta, "--start-theta");
 
   const bool tty = !o.quiet && isatty(fileno(stderr));
+  bool progress_shown = false;
   if (tty) {
-    settings.progress = [](const planner::Progress& p) {
+    settings.progress = [&progress_shown](const planner::Progress& p) {
       std::fprintf(stderr,
                    "\rplan-reorientation: %6.1f s  %10llu propagations  best distance %.3g ",
                    p.elapsed, static_cast<unsigned long long>(p.propagations), p.best_distance);
       std::fflush(stderr);
+      progress_shown = true;
+    };
+    pipeline.on_stage = [&progress_shown](planner::PipelineStage st, const std::string& method,
+                                          std::uint32_t seed) {
+      std::fprintf(stderr, "%splan-reorientation: %s\n", progress_shown ? "\n" : "",
+                   planner::stageText(st, method, seed).c_str());
+      progress_shown = false;
     };
   }
   const RbsfModel model(loadCell(o.cell));
   settings.cancel = &InterruptFlag::install();  // Ctrl-C: stop and write the best so far
   opt_settings.cancel = settings.cancel;
-  planner::ReorientationPlanner rp(model, settings);
   const trajopt::PlanOptimizer optimizer(model, opt_settings);  // bad settings: exit 2
-  rp.checkProblem(problem);                                     // bad input before any search
-  planner::Plan plan;
-  bool found = false;
-  if (support) {
-    planner::SupportPlannerSettings ss;
-    ss.time_limit = settings.time_limit;
-    ss.position_tolerance = settings.position_tolerance;
-    ss.angle_tolerance = settings.angle_tolerance;
-    ss.cancel = settings.cancel;
-    planner::SupportPlanner sp(model, ss);
-    if (tty) std::fprintf(stderr, "plan-reorientation: searching supports\n");
-    found = sp.solve(problem, plan);
-    if (InterruptFlag::raised()) {
-      std::printf("interrupted: no plan written\n");
-      return kExitInterrupted;
-    }
-    if (!found) {
-      std::printf("no support path: %s (%ld expansions)\n", sp.message().c_str(), sp.expansions());
-      return kExitTimeLimit;
-    }
-    std::printf("support path: sticking forces within %.2f of the friction cone, %ld expansions\n",
-                sp.frictionUse(), sp.expansions());
-  } else {
-    found = rp.solve(problem, plan);
-    if (tty) std::fprintf(stderr, "\n");
-    if (InterruptFlag::raised()) {
-      if (found) outputs.write(model, plan);
-      std::printf("interrupted: best distance %.3g (tolerance units)%s; %llu propagations\n",
-                  rp.bestDistance(), found && outputs.any() ? ", best plan so far written" : "",
-                  static_cast<unsigned long long>(rp.propagations()));
-      return kExitInterrupted;
-    }
-  }
-  auto stage = [&](const char* what) {
-    if (tty) std::fprintf(stderr, "plan-reorientation: %s\n", what);
-  };
-  certificate.trial.position_tolerance = settings.position_tolerance;
-  certificate.trial.angle_tolerance = settings.angle_tolerance;
-  if (found && plan.status == "exact") {
+  if (!o.no_optimize)
+    pipeline.refine = trajopt::refinementStep(optimizer, [](const trajopt::RefineOutcome& r) {
+      if (!InterruptFlag::raised()) printOptimisation(r);
+    });
+  pipeline.on_found = [](const planner::PipelineAttempt& a, const planner::Plan& plan) {
+    if (a.method == "support")
+      std::printf(
+          "support path: sticking forces within %.2f of the friction cone, %ld "
+          "expansions\n",
+          a.friction_use, a.expansions);
+    if (plan.status != "exact") return;
     std::printf(
         "exact plan: %zu segments, %.3f s of motion, phases %s; planned in %.3f s, %llu "
         "propagations\n",
         plan.segments.size(), plan.duration(), plan.phaseSequence().c_str(), plan.planning_time,
         static_cast<unsigned long long>(plan.propagations));
-    if (support) {
+    if (a.method == "support")
       std::printf("optimisation: not run (support plans are not refined yet)\n");
-    }
-    if (!o.no_optimize && !support) {
-      stage("optimising, then certifying the planner's and the optimised plans");
-      trajopt::RefineOutcome refined = trajopt::refinePlan(optimizer, plan, refine);
-      if (InterruptFlag::raised()) {  // stopped: the planner's plan, not certified
+  };
+  pipeline.on_attempt = [](const planner::PipelineAttempt& a, const planner::Plan&) {
+    if (!a.found && a.method == "support")
+      std::printf("no support path: %s (%ld expansions)\n", a.note.c_str(), a.expansions);
+    else if (!a.found)
+      std::printf("%s, seed %u: no path within the time left\n", a.method.c_str(), a.seed);
+    else if (a.certificate.ran)
+      printCertificate(a.certificate);
+  };
+  planner::ReorientationPipeline run(model, pipeline);
+  planner::PipelineOutcome result = run.run(problem);  // bad problem: exit 2 before any search
+  planner::Plan& plan = result.plan;
+  const bool found = result.chosen >= 0;
+  const std::string method = found ? result.attempts[result.chosen].method : "";
+  if (found && result.attempts.size() > 1)
+    std::printf("chosen: attempt %d of %zu (%s%s), %s\n", result.chosen + 1, result.attempts.size(),
+                method.c_str(),
+                method == "support"
+                    ? ""
+                    : (", seed " + std::to_string(result.attempts[result.chosen].seed)).c_str(),
+                planner::statusText(result.status));
+
+  switch (result.status) {
+    case planner::PipelineStatus::kCancelled:
+      if (found) {
         plan.certificate = {};
         outputs.write(model, plan);
-        std::printf("interrupted during the optimisation: planner's plan%s, not certified\n",
-                    outputs.any() ? " written" : "");
-        return kExitInterrupted;
       }
-      printOptimisation(refined);
-      plan = std::move(refined.plan);
-    } else {
-      stage("certifying the plan");
-      plan.certificate = planner::certify(model, plan, certificate, nullptr, settings.cancel);
-      if (InterruptFlag::raised()) {
-        plan.certificate = {};
-        outputs.write(model, plan);
-        std::printf("interrupted while certifying: plan%s, not certified\n",
-                    outputs.any() ? " written" : "");
-        return kExitInterrupted;
-      }
-    }
-    printCertificate(plan.certificate);
-    outputs.write(model, plan);
-    if (plan.certificate.certified) return 0;
-    std::fprintf(stderr, "plan-reorientation: the plan written is %s\n",
-                 planner::verdictText(plan.certificate).c_str());
-    return kExitNotCertified;
+      std::printf("interrupted: best distance %.3g (tolerance units)%s, not certified\n",
+                  result.best_distance, found && outputs.any() ? ", best plan so far written" : "");
+      return kExitInterrupted;
+    case planner::PipelineStatus::kCertified:
+      outputs.write(model, plan);
+      return 0;
+    case planner::PipelineStatus::kNotCertified:
+      outputs.write(model, plan);
+      std::fprintf(stderr, "plan-reorientation: the plan written is %s\n",
+                   planner::verdictText(plan.certificate).c_str());
+      return kExitNotCertified;
+    case planner::PipelineStatus::kNoPlan:
+      if (std::isfinite(result.best_distance))
+        std::printf(
+            "no plan within %.3g s: best distance %.3g (tolerance units: 1 = 1 cm or "
+            "2 deg)\n",
+            settings.time_limit, result.best_distance);
+      else
+        std::printf("no plan within %.3g s\n", settings.time_limit);
+      return kExitTimeLimit;
+    case planner::PipelineStatus::kApproximate:
+      break;
   }
-  if (found) {
-    stage("certifying the approximate plan");
-    plan.certificate = planner::certify(model, plan, certificate, nullptr, settings.cancel);
-    if (InterruptFlag::raised()) plan.certificate = {};
-    if (plan.certificate.ran) printCertificate(plan.certificate);
-    outputs.write(model, plan);
-  }
-  if (support) {
+  outputs.write(model, plan);
+  if (method == "support") {
     // The path was found; its closed-loop run missed the goal (the part left the supports).
     if (plan.samples.empty() || !plan.samples.back().q.allFinite()) {
       std::printf("no exact plan: the support path's closed-loop run lost the part%s\n",
@@ -276,9 +289,8 @@ int run(int argc, char** argv) {
   std::printf(
       "no exact plan within %.3g s: best distance %.3g (tolerance units: 1 = 1 cm or "
       "2 deg)%s; %llu propagations\n",
-      settings.time_limit, rp.bestDistance(),
-      found && outputs.any() ? ", approximate plan written" : "",
-      static_cast<unsigned long long>(rp.propagations()));
+      settings.time_limit, result.best_distance, outputs.any() ? ", approximate plan written" : "",
+      static_cast<unsigned long long>(plan.propagations));
   return kExitTimeLimit;
 }
 

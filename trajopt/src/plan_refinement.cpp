@@ -28,15 +28,6 @@ bool finitePlan(const planner::Plan& p) {
   return true;
 }
 
-/// A certificate's rank: successes, then the final error of its worst trial (smaller wins).
-std::pair<int, double> rank(const planner::Certificate& c) {
-  const planner::TrialOutcome& w = c.worst;
-  const double error = w.dropped ? std::numeric_limits<double>::infinity()
-                                 : std::max(w.position_error / c.position_tolerance,
-                                            w.angle_error / c.angle_tolerance);
-  return {c.successes, -error};
-}
-
 bool cancelled(const PlanOptimizer& o) {
   return o.settings().cancel != nullptr && o.settings().cancel->load();
 }
@@ -109,7 +100,7 @@ RefineOutcome refinePlan(const PlanOptimizer& optimizer, const planner::Plan& pl
   for (int k = 0; k < out.attempts; ++k) {
     if (!certificates[k].ran) continue;
     const planner::Certificate& incumbent = best < 0 ? out.planner_certificate : certificates[best];
-    if (!incumbent.ran || rank(certificates[k]) > rank(incumbent)) best = k;
+    if (planner::betterCertificate(certificates[k], incumbent)) best = k;
   }
   std::ostringstream why;
   for (int k = 0; k < out.attempts; ++k) {
@@ -136,6 +127,21 @@ RefineOutcome refinePlan(const PlanOptimizer& optimizer, const planner::Plan& pl
   out.plan.optimization.chosen = out.refined;
   out.plan.optimization.message = why.str();
   return out;
+}
+
+planner::PipelineSettings::RefineStep refinementStep(
+    const PlanOptimizer& optimizer, std::function<void(const RefineOutcome&)> report) {
+  return [&optimizer, report = std::move(report)](const planner::Plan& plan,
+                                                  const planner::CertificateSettings& certificate,
+                                                  bool& refined, std::string& note) {
+    RefineSettings settings;
+    settings.certificate = certificate;
+    RefineOutcome r = refinePlan(optimizer, plan, settings);
+    if (report) report(r);
+    refined = r.refined;
+    note = r.reason;
+    return std::move(r.plan);
+  };
 }
 
 }  // namespace rbsf::trajopt

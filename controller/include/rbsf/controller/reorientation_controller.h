@@ -41,6 +41,7 @@
 #include "rbsf/dynamics/reference_trajectory.h"
 #include "rbsf/planner/certificate.h"
 #include "rbsf/planner/plan.h"
+#include "rbsf/planner/reorientation_pipeline.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
@@ -91,6 +92,13 @@ struct ReorientationRequest {
   /// \brief How the plan is certified (trials, seed, criteria); the trials run on the
   ///        worker thread, on every core.
   planner::CertificateSettings certificate;
+  /// \brief Which planners (reorientation_pipeline.h). The default, the kinodynamic planner
+  ///        alone, suits a cell that senses the part; kAuto tries the support planner (plans
+  ///        the joints alone hold) first.
+  planner::PipelineSettings::Method method = planner::PipelineSettings::Method::kKinodynamic;
+  /// \brief Kinodynamic searches at most, seed after seed, until one certifies (0: while
+  ///        planner.time_limit lasts).
+  int max_attempts = 1;
   bool accept_approximate = false;  ///< publish a plan that ends away from the goal
   /// \brief Publish a plan that failed its certificate (outcome kNotCertified). Off: such
   ///        a plan is kept in result() only; a cell should not run it.

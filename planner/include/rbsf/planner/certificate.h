@@ -55,6 +55,12 @@ Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateS
                     std::vector<TrialOutcome>* outcomes = nullptr,
                     const std::atomic<bool>* cancel = nullptr);
 
+/// \brief True when `a` is the better evidence: a certificate that ran before one that did
+///        not, a certified one before one that is not, more successes, then the smaller
+///        final error of the worst trial (max of position / tolerance and angle /
+///        tolerance; a drop is the largest). Equal certificates: false.
+bool betterCertificate(const Certificate& a, const Certificate& b);
+
 /// \brief Trial `index` of a certificate again, with every step's true state in `trace`
 ///        (index -1: the nominal trial, no draws and no sensor noise).
 TrialOutcome traceTrial(const RbsfModel& model, const Plan& plan,

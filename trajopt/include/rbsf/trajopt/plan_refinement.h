@@ -12,9 +12,11 @@
 /// earlier candidate (the planner's plan first) is kept.
 
 #include <atomic>
+#include <functional>
 #include <string>
 
 #include "rbsf/planner/certificate.h"
+#include "rbsf/planner/reorientation_pipeline.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
 namespace rbsf::trajopt {
@@ -45,5 +47,11 @@ struct RefineSettings {
 /// \throws InputError when the plan does not fit the optimiser's cell.
 RefineOutcome refinePlan(const PlanOptimizer& optimizer, const planner::Plan& plan,
                          const RefineSettings& settings = {});
+
+/// \brief The pipeline's refinement step (planner/reorientation_pipeline.h): refinePlan with
+///        `optimizer` (kept by reference: it must outlive the step) and the pipeline's
+///        certificate settings; `report`, when given, sees every outcome.
+planner::PipelineSettings::RefineStep refinementStep(
+    const PlanOptimizer& optimizer, std::function<void(const RefineOutcome&)> report = {});
 
 }  // namespace rbsf::trajopt

@@ -1,0 +1,185 @@
+// The pipeline (reorientation_pipeline.h): the support planner first; a certified plan ends
+// the run; otherwise seed after seed, each plan judged, the best kept; the refinement hook
+// sees exact kinodynamic plans only; a cancel stops it. A written certified plan keeps the
+// cell's motion limits at every sample, ends at rest and, on a blind cell, is held by the
+// joints.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+#include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/errors.h"
+#include "rbsf/planner/plan_holding.h"
+#include "rbsf/planner/reorientation_pipeline.h"
+
+namespace rbsf::planner {
+namespace {
+
+Cell defaultCell() { return loadCell(std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml"); }
+
+const RbsfModel& defaultModel() {
+  static const RbsfModel model(defaultCell());
+  return model;
+}
+
+Problem turn(double degrees) {
+  Problem p;
+  p.start = {0.1, 0.40, 0.0};
+  p.goal = {0.1, 0.40, degrees * M_PI / 180};
+  return p;
+}
+
+/// Few trials: the tests are about the composition, not the rates.
+PipelineSettings fewTrials(PipelineSettings::Method method) {
+  PipelineSettings s;
+  s.method = method;
+  s.planner.time_limit = 60.0;
+  s.certificate.trials = 4;
+  return s;
+}
+
+/// Every sample within the cell's motion limits and the last one at rest, from the samples
+/// themselves (not from the certificate's own measurement).
+void expectHandledNotThrown(const Plan& plan, const MotionLimits& limits) {
+  ASSERT_FALSE(plan.samples.empty());
+  for (const PlanSample& s : plan.samples) {
+    EXPECT_LE(std::hypot(s.v[0], s.v[1]), limits.part_speed) << "t = " << s.t;
+    EXPECT_LE(std::abs(s.v[2]), limits.angular_speed) << "t = " << s.t;
+  }
+  const PlanSample& end = plan.samples.back();
+  EXPECT_LE(std::hypot(end.v[0], end.v[1]), limits.rest_speed);
+  EXPECT_LE(std::abs(end.v[2]), limits.rest_angular_speed);
+}
+
+TEST(ReorientationPipeline, AutoTriesSupportsFirstAndACertifiedPlanEndsTheRun) {
+  const RbsfModel& model = defaultModel();
+  PipelineSettings s = fewTrials(PipelineSettings::Method::kAuto);
+  std::vector<PipelineStage> stages;
+  s.on_stage = [&](PipelineStage st, const std::string&, std::uint32_t) { stages.push_back(st); };
+  int refinements = 0;
+  s.refine = [&](const Plan& p, const CertificateSettings&, bool&, std::string&) {
+    ++refinements;
+    return p;
+  };
+  const PipelineOutcome out = ReorientationPipeline(model, s).run(turn(-15));
+  ASSERT_EQ(out.status, PipelineStatus::kCertified) << verdictText(out.plan.certificate);
+  ASSERT_EQ(out.attempts.size(), 1u);
+  EXPECT_EQ(out.chosen, 0);
+  EXPECT_EQ(out.attempts[0].method, "support");
+  EXPECT_EQ(out.plan.planner, "support");
+  EXPECT_EQ(refinements, 0);  // support plans are certified as found
+  EXPECT_EQ(stages, (std::vector<PipelineStage>{PipelineStage::kSupportSearch,
+                                                PipelineStage::kCertifying}));
+  EXPECT_TRUE(out.plan.certificate.certified);
+  EXPECT_FALSE(std::isfinite(out.best_distance));  // no kinodynamic search ran
+  expectHandledNotThrown(out.plan, model.cell().motion_limits);
+}
+
+TEST(ReorientationPipeline, OnABlindCellTheWrittenPlanIsHeldByTheJoints) {
+  Cell blind = defaultCell();
+  blind.sensing.part_pose.present = false;
+  const RbsfModel model(blind);
+  const PipelineOutcome out =
+      ReorientationPipeline(model, fewTrials(PipelineSettings::Method::kAuto)).run(turn(-30));
+  ASSERT_EQ(out.status, PipelineStatus::kCertified) << verdictText(out.plan.certificate);
+  EXPECT_EQ(out.plan.certificate.law, "joint feedback");
+  // Measured again from the plan: at least 3 independent rows but for short transitions.
+  const PlanHolding h = measureHolding(model, out.plan, HoldingSettings{});
+  ASSERT_TRUE(h.measured);
+  EXPECT_LE(h.longest_free, HoldingSettings{}.max_free_time);
+  expectHandledNotThrown(out.plan, model.cell().motion_limits);
+}
+
+TEST(ReorientationPipeline, UncertifiedPlansGoOnSeedAfterSeedAndTheBestIsKept) {
+  // Kinodynamic plans of the default cell throw the part (beyond its motion limits): none
+  // certifies, so both attempts run, with consecutive seeds, each refined once.
+  const RbsfModel& model = defaultModel();
+  PipelineSettings s = fewTrials(PipelineSettings::Method::kKinodynamic);
+  s.planner.seed = 3;
+  s.max_attempts = 2;
+  std::vector<std::uint32_t> refined_seeds;
+  s.refine = [&](const Plan& p, const CertificateSettings& c, bool& refined, std::string& note) {
+    refined_seeds.push_back(p.seed);
+    EXPECT_EQ(c.trial.position_tolerance, s.planner.position_tolerance);
+    EXPECT_EQ(c.trials, 4);
+    refined = false;
+    note = "kept as found";
+    Plan q = p;
+    q.certificate = certify(model, q, c);
+    return q;
+  };
+  const PipelineOutcome out = ReorientationPipeline(model, s).run(turn(-15));
+  ASSERT_EQ(out.attempts.size(), 2u);
+  EXPECT_EQ(out.attempts[0].seed, 3u);
+  EXPECT_EQ(out.attempts[1].seed, 4u);
+  EXPECT_EQ(out.status, PipelineStatus::kNotCertified);
+  EXPECT_FALSE(out.plan.certificate.certified);
+  EXPECT_FALSE(out.plan.certificate.motion.ok());
+  for (const PipelineAttempt& a : out.attempts) {
+    ASSERT_TRUE(a.exact);
+    EXPECT_EQ(a.note, "kept as found");
+  }
+  EXPECT_EQ(refined_seeds, (std::vector<std::uint32_t>{3, 4}));
+  // The kept plan is the chosen attempt's, and no other attempt's certificate is better.
+  ASSERT_GE(out.chosen, 0);
+  EXPECT_EQ(out.plan.seed, out.attempts[out.chosen].seed);
+  for (const PipelineAttempt& a : out.attempts)
+    EXPECT_FALSE(betterCertificate(a.certificate, out.plan.certificate));
+  EXPECT_TRUE(std::isfinite(out.best_distance));
+}
+
+TEST(ReorientationPipeline, ACancelBeforeTheRunStopsItWithNothingCertified) {
+  std::atomic<bool> cancel{true};
+  PipelineSettings s = fewTrials(PipelineSettings::Method::kAuto);
+  s.planner.cancel = &cancel;
+  const PipelineOutcome out = ReorientationPipeline(defaultModel(), s).run(turn(-15));
+  EXPECT_EQ(out.status, PipelineStatus::kCancelled);
+  EXPECT_FALSE(out.plan.certificate.ran);
+}
+
+TEST(ReorientationPipeline, BadSettingsAndProblemsAreInputErrors) {
+  const RbsfModel& model = defaultModel();
+  PipelineSettings s;
+  s.planner.time_limit = 0.0;
+  EXPECT_THROW(ReorientationPipeline(model, s), InputError);
+  s = {};
+  s.planner.planner = "PRM";
+  EXPECT_THROW(ReorientationPipeline(model, s), InputError);
+  s = {};
+  s.support_share = 0.0;
+  EXPECT_THROW(ReorientationPipeline(model, s), InputError);
+  Problem far = turn(0);
+  far.goal.y = 3.0;  // no finger reaches it
+  ReorientationPipeline pipeline(model, PipelineSettings{});
+  EXPECT_THROW(pipeline.run(far), InputError);
+}
+
+TEST(BetterCertificate, CertifiedBeforeMoreSuccessesBeforeSmallerError) {
+  Certificate a, b;
+  a.ran = b.ran = true;
+  a.position_tolerance = b.position_tolerance = 0.01;
+  a.angle_tolerance = b.angle_tolerance = 0.035;
+  a.worst.index = b.worst.index = 0;
+  a.successes = 10;
+  b.successes = 12;  // more successes, but its plan breaks the motion limits
+  a.certified = true;
+  EXPECT_TRUE(betterCertificate(a, b));
+  EXPECT_FALSE(betterCertificate(b, a));
+  a.certified = false;
+  EXPECT_TRUE(betterCertificate(b, a));
+  a.successes = 12;
+  a.worst.position_error = 0.002;
+  b.worst.position_error = 0.004;
+  EXPECT_TRUE(betterCertificate(a, b));
+  b.worst.dropped = true;
+  a.worst.position_error = 0.009;
+  EXPECT_TRUE(betterCertificate(a, b));
+  EXPECT_FALSE(betterCertificate(a, a));
+  Certificate never;
+  EXPECT_TRUE(betterCertificate(b, never));
+}
+
+}  // namespace
+}  // namespace rbsf::planner
