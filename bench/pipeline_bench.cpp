@@ -109,11 +109,12 @@ int run(int argc, char** argv) {
       }
       pairs += seeds;
       certified_pairs += certified;
+      char rate[32] = "-";
+      if (!rates.empty()) std::snprintf(rate, sizeof rate, "%.0f %%", 100 * median(rates));
       std::printf(
-          "%-9s %-6s summary: %d/%d certified; median success rate of those %.0f %%; "
+          "%-9s %-6s summary: %d/%d certified; median success rate of those %s; "
           "median wall %.1f s\n",
-          bp.name.c_str(), blind ? "joints" : "part", certified, seeds, 100 * median(rates),
-          median(walls));
+          bp.name.c_str(), blind ? "joints" : "part", certified, seeds, rate, median(walls));
     }
   }
   std::printf("all: %d/%d problem-seed pairs certified (%.0f %%)\n", certified_pairs, pairs,

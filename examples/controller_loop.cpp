@@ -163,6 +163,7 @@ int run(int argc, char** argv) {
   }
   ctl.wait();
   const controller::RequestResult result = ctl.result();
+  if (result.outcome == controller::PlanOutcome::kInputError) throw InputError(result.message);
   std::printf(
       "planning   %s after %.3f s (%ld loop ticks holding the part, which moved at most "
       "%.2e m or rad; %ld samples said \"no plan\")\n",
@@ -170,7 +171,6 @@ int run(int argc, char** argv) {
       no_plan_samples);
   if (!result.message.empty()) std::printf("           %s\n", result.message.c_str());
   if (ctl.status() != controller::ControllerStatus::kReady) {
-    if (result.outcome == controller::PlanOutcome::kInputError) throw InputError(result.message);
     if (result.outcome == controller::PlanOutcome::kNotCertified) {
       std::fprintf(stderr, "rbsf-controller-loop: the plan was not run: %s\n",
                    result.message.c_str());

@@ -74,16 +74,18 @@ case "$cmd" in
     cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       -DCMAKE_CXX_COMPILER=clang++-14 -DRBSF_FUZZ=ON -DRBSF_BUILD_TESTS=OFF \
       -DRBSF_BUILD_BENCHMARKS=OFF >/dev/null
-    cmake --build build-fuzz -j "$jobs" --target rbsf_fuzz_cell rbsf_fuzz_plan rbsf_fuzz_cli_values
+    cmake --build build-fuzz -j "$jobs" --target rbsf_fuzz_cell rbsf_fuzz_plan rbsf_fuzz_cli_values \
+      rbsf_fuzz_controls rbsf_fuzz_problem_suite
     seconds="${RBSF_FUZZ_SECONDS:-120}"
     runs="${RBSF_FUZZ_RUNS:-150000}"
     seed="${RBSF_FUZZ_SEED:-1}"
-    for target in cell plan cli_values; do
+    for target in cell plan cli_values controls problem_suite; do
       # A scratch copy of the seeds: what the run discovers never lands in the repository.
       corpus="build-fuzz/corpus/$target"
       rm -rf "$corpus" && mkdir -p "$corpus"
       cp tests/fuzz/corpus/"$target"/* "$corpus"/ 2>/dev/null || true
       [ "$target" = cell ] && cp cells/*.yaml "$corpus"/
+      [ "$target" = problem_suite ] && cp cells/problems/*.yaml "$corpus"/
       echo "fuzz: rbsf_fuzz_$target, ${runs} inputs from seed ${seed} (at most ${seconds} s)"
       ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp" \

@@ -6,7 +6,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 
 #include "rbsf/dynamics/errors.h"
@@ -30,6 +33,27 @@ void writeFileAtomically(const std::string& path, std::string_view text, const s
       throw InputError(message);
     }
   }
+  moveIntoPlace(tmp, path, what);
+}
+
+namespace {
+
+/// True when `path` exists and is not a regular file (lstat: a symbolic link counts).
+bool specialFile(const std::string& path, bool& directory) {
+  struct stat st;
+  if (::lstat(path.c_str(), &st) != 0) return false;
+  directory = S_ISDIR(st.st_mode);
+  return !S_ISREG(st.st_mode);
+}
+
+}  // namespace
+
+void moveIntoPlace(const std::string& tmp, const std::string& path, const std::string& what) {
+  bool directory = false;
+  if (specialFile(path, directory)) {  // rename would replace the device, FIFO or link itself
+    std::remove(tmp.c_str());
+    throw InputError(what + ": cannot write '" + path + "': it exists and is not a regular file");
+  }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     std::remove(tmp.c_str());
     throw InputError(what + ": cannot move the output into place at '" + path + "'");
@@ -47,9 +71,20 @@ void checkWritable(const std::string& path, const std::string& what) {
     throw InputError(what + ": '" + path + "' is not a file name");
   if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
     throw InputError(message + "no directory '" + dir + "'");
-  if (::access(dir.c_str(), W_OK) != 0) throw InputError(message + "directory not writable");
-  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-    throw InputError(message + "it is a directory");
+  bool directory = false;
+  if (specialFile(path, directory))
+    throw InputError(message + (directory ? "it is a directory"
+                                          : "it exists and is not a regular file (a device, "
+                                            "FIFO or symbolic link is never replaced)"));
+  // The directory takes a new file: the real test (permissions, read-only or special file
+  // systems such as /proc), made before any work instead of after it.
+  std::string probe = dir + "/.rbsf-write-check-XXXXXX";
+  const int fd = ::mkstemp(probe.data());
+  if (fd < 0)
+    throw InputError(message + "cannot create a file in '" + dir + "' (" + std::strerror(errno) +
+                     ")");
+  ::close(fd);
+  ::unlink(probe.c_str());
 }
 
 }  // namespace rbsf

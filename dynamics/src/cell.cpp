@@ -7,21 +7,17 @@
 
 #include "rbsf/dynamics/cell.h"
 
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <initializer_list>
 #include <set>
-#include <sstream>
 #include <string_view>
 #include <tuple>
 
 #include <yaml-cpp/yaml.h>
 
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/input_file.h"
 #include "rbsf/dynamics/types.h"
 
 namespace rbsf {
@@ -390,16 +386,6 @@ Cell parseCell(const std::string& yaml_text, const std::string& label) {
   return cell;
 }
 
-Cell loadCell(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(path + ": cannot read cell file (it is a directory)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open cell file (" + std::strerror(errno) + ")");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": cannot read cell file");
-  return parseCell(text.str(), path);
-}
+Cell loadCell(const std::string& path) { return parseCell(readInputFile(path, "cell file"), path); }
 
 }  // namespace rbsf

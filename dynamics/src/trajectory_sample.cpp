@@ -17,26 +17,28 @@ std::string trajectoryCsvHeader(int m) {
   return h + ",phase";
 }
 
-std::string trajectoryCsvText(const std::vector<TrajectorySample>& samples, int m) {
-  std::string text = trajectoryCsvHeader(m) + "\n";
+void appendTrajectoryCsvRow(std::string& text, const TrajectorySample& s, int m) {
+  if (s.q.size() != m + 4 || s.v.size() != m + 4 || s.tau.size() != m + 1 || s.f_n.size() != m)
+    throw std::runtime_error("trajectory sample sized for another number of fingers");
   char buf[32];
   auto put = [&](double x, bool comma) {
     if (!std::isfinite(x)) throw std::runtime_error("trajectory holds a non-finite number");
     std::snprintf(buf, sizeof buf, comma ? ",%.17g" : "%.17g", x);
     text += buf;
   };
-  for (const TrajectorySample& s : samples) {
-    if (s.q.size() != m + 4 || s.v.size() != m + 4 || s.tau.size() != m + 1 || s.f_n.size() != m)
-      throw std::runtime_error("trajectory sample sized for another number of fingers");
-    put(s.t, false);
-    for (const auto* v : {&s.q, &s.v})
-      for (int k = 0; k < v->size(); ++k) put((*v)[k], true);
-    for (int k = 0; k < s.tau.size(); ++k) put(s.tau[k], true);
-    for (int k = 0; k < s.f_n.size(); ++k) put(s.f_n[k], true);
-    text += ',';
-    text += toString(s.phase);
-    text += '\n';
-  }
+  put(s.t, false);
+  for (const auto* v : {&s.q, &s.v})
+    for (int k = 0; k < v->size(); ++k) put((*v)[k], true);
+  for (int k = 0; k < s.tau.size(); ++k) put(s.tau[k], true);
+  for (int k = 0; k < s.f_n.size(); ++k) put(s.f_n[k], true);
+  text += ',';
+  text += toString(s.phase);
+  text += '\n';
+}
+
+std::string trajectoryCsvText(const std::vector<TrajectorySample>& samples, int m) {
+  std::string text = trajectoryCsvHeader(m) + "\n";
+  for (const TrajectorySample& s : samples) appendTrajectoryCsvRow(text, s, m);
   return text;
 }
 

@@ -4,13 +4,13 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "certificate_json.h"
 #include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/input_file.h"
 #include "rbsf/dynamics/rollout.h"
 
 namespace rbsf::planner {
@@ -219,10 +219,7 @@ std::string planCsvText(const Plan& plan) {
 }
 
 Plan readPlanJson(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw InputError(path + ": cannot open");
-  const std::string text(std::istreambuf_iterator<char>(f), {});
-  return parsePlanJson(text, path);
+  return parsePlanJson(readInputFile(path, "plan file"), path);
 }
 
 Plan parsePlanJson(std::string_view text, const std::string& path) {

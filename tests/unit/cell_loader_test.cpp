@@ -721,7 +721,7 @@ TEST(CellLoader, MissingFileNamesThePath) {
     FAIL() << "no InputError";
   } catch (const InputError& e) {
     const std::string msg = e.what();
-    EXPECT_EQ(msg.rfind(path + ": cannot open cell file", 0), 0u) << msg;
+    EXPECT_EQ(msg.rfind(path + ": cannot read the cell file", 0), 0u) << msg;
   }
 }
 

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/tools/controls_file.h"
 #include "rbsf/tools/trajectory_writer.h"
@@ -82,12 +83,23 @@ TEST(TrajectoryWriter, FormatByExtensionAndAtomicWrite) {
   const auto j = nlohmann::json::parse(std::ifstream(dir + "traj_unit.json"));
   EXPECT_EQ(j["samples"][0]["v"][0].get<double>(), 1.0 / 3.0);
   EXPECT_EQ(j["samples"][0]["phase"], "P");
-  // A NaN never reaches a file.
+  // At most max_samples samples.
+  {
+    TrajectoryWriter capped(dir + "traj_cap.csv", 1, "--out", 2);
+    capped.add(s);
+    capped.add(s);
+    EXPECT_THROW(capped.add(s), InputError);
+  }
+  EXPECT_FALSE(std::ifstream(dir + "traj_cap.csv").good());  // never committed
+  // A NaN never reaches a file; the streamed temporary file goes with the writer.
   s.q[0] = NAN;
-  TrajectoryWriter bad(dir + "traj_nan.csv", 1);
-  bad.add(s);
-  EXPECT_THROW(bad.commit(), std::runtime_error);
+  {
+    TrajectoryWriter bad(dir + "traj_nan.csv", 1);
+    EXPECT_THROW(bad.add(s), std::runtime_error);
+    EXPECT_TRUE(std::ifstream(temporaryPathFor(dir + "traj_nan.csv")).good());
+  }
   EXPECT_FALSE(std::ifstream(dir + "traj_nan.csv").good());
+  EXPECT_FALSE(std::ifstream(temporaryPathFor(dir + "traj_nan.csv")).good());
 }
 
 }  // namespace

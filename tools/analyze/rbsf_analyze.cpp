@@ -1,9 +1,10 @@
 // rbsf-analyze: the model's view of one state of a cell (kinematics, phase-U LCP, phase
 // classification, conditions for turning the part, static holding).
 //
-// Exit status: 0 success, 2 bad input (cell, option value, finger off the boundary),
-// 1 internal error.
+// Exit status: 0 success, 2 bad input (cell, option value, finger off the boundary, a
+// tau beyond the cell's limits, a state whose analysis is not finite), 1 internal error.
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -128,10 +129,14 @@ int run(int argc, char** argv) {
       o.tau.empty() ? VecU(VecU::Zero(m + 1))
                     : VecU(Eigen::Map<const Eigen::VectorXd>(
                           parseVector(o.tau, "--tau", m + 1, "tau_theta,tau_1..").data(), m + 1));
+  checkInputLimits(model.cell(), tau, "--tau: ");
   const StateAnalysis a = analyzeState(model, q, v, tau);
+  const nlohmann::json j = toJson(q, a);
+  if (!allFinite(j))  // e.g. a state so far off that the model's quantities overflow
+    throw InputError(std::string(o.q.empty() ? "--pose" : "--q") +
+                     "/--v: the model gives "
+                     "non-finite values at this state (is it physical?)");
   if (o.json) {
-    const nlohmann::json j = toJson(q, a);
-    requireFinite(j, "analysis");
     std::cout << j.dump(2) << "\n";
   } else {
     printTable(a, model);

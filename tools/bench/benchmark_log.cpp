@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <set>
 #include <sstream>
 
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/input_file.h"
 
 namespace rbsf::bench {
 
@@ -157,11 +157,7 @@ ExperimentLog parseLog(const std::string& text, const std::string& label) {
 }
 
 ExperimentLog readLog(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(path + ": cannot read the log file");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return parseLog(ss.str(), path);
+  return parseLog(readInputFile(path, "log file"), path);
 }
 
 std::string formatLog(const ExperimentLog& log) {

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/input_file.h"
 #include "rbsf/tools/cli_values.h"
 
 namespace rbsf::bench {
@@ -92,11 +93,13 @@ BenchProblem readProblem(const YAML::Node& n, const std::string& where,
 }  // namespace
 
 std::vector<BenchProblem> loadProblemSuite(const std::string& path) {
+  return parseProblemSuite(readInputFile(path, "problem file"), path);
+}
+
+std::vector<BenchProblem> parseProblemSuite(const std::string& text, const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(path + ": cannot read the problem file");
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw InputError(path + ": not valid YAML: " + e.msg);
   }

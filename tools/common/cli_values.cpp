@@ -5,6 +5,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <system_error>
 
@@ -70,6 +71,8 @@ double angle(std::string_view text, std::string_view what) {
   double v = 0;
   if (body.empty()) failValue(what, t, kNotAngle);
   if (auto err = scan(body, kNotAngle, v); !err.empty()) failValue(what, t, err);
+  if (!(std::abs(v * scale) <= kMaxAngle))
+    failValue(what, t, "is beyond +-36000 deg (100 turns), the largest angle accepted");
   return v * scale;
 }
 
@@ -134,6 +137,8 @@ VecQ parseState(std::string_view text, std::string_view what, int m, bool veloci
     const std::string w = entryWhat(what, static_cast<std::size_t>(i), entryName(i, velocity));
     const bool is_angle = !velocity && (i == layout::kPhi || i == layout::kTheta);
     q[i] = is_angle ? angle(tokens[i], w) : number(tokens[i], w);
+    if (velocity && !(std::abs(q[i]) <= kMaxSpeed))
+      failValue(w, tokens[i], "is beyond 100 (m/s or rad/s), the largest speed accepted");
   }
   return q;
 }
@@ -187,6 +192,26 @@ std::string configLayout(int m, bool velocity) {
   for (int i = 0; i < m; ++i)
     out += entryName(layout::stroke(i), velocity) + (i + 1 < m ? "," : "");
   return out;
+}
+
+std::string numberText(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
+void checkInputLimits(const Cell& cell, const VecU& tau, const std::string& where) {
+  const auto text = numberText;
+  if (!(std::abs(tau[layout::kTauTheta]) <= cell.base.torque_limit))
+    throw InputError(where + "'tau_theta': " + text(tau[layout::kTauTheta]) +
+                     " N m exceeds the base torque limit " + text(cell.base.torque_limit) + " N m");
+  for (std::size_t i = 0; i < cell.fingers.size(); ++i) {
+    const double f = tau[layout::fingerForce(static_cast<int>(i))];
+    if (!(std::abs(f) <= cell.fingers[i].force_limit))
+      throw InputError(where + "'tau_" + std::to_string(i + 1) + "': " + text(f) +
+                       " N exceeds finger " + std::to_string(i + 1) + "'s force limit " +
+                       text(cell.fingers[i].force_limit) + " N");
+  }
 }
 
 }  // namespace rbsf::tools

@@ -3,10 +3,9 @@
 
 #include "rbsf/tools/controls_file.h"
 
-#include <fstream>
-#include <sstream>
 
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/input_file.h"
 #include "rbsf/tools/cli_values.h"
 
 namespace rbsf::tools {
@@ -45,12 +44,7 @@ std::string ControlSchedule::header(int m) {
 }
 
 ControlSchedule ControlSchedule::load(const std::string& path, int m) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the controls file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": cannot read the controls file");
-  return parse(text.str(), m, path);
+  return parse(readInputFile(path, "controls file"), m, path);
 }
 
 ControlSchedule ControlSchedule::parse(std::string_view text, int m, const std::string& label) {

@@ -56,13 +56,16 @@ nlohmann::json vectorJson(const Eigen::Ref<const Eigen::VectorXd>& v) {
   return a;
 }
 
+bool allFinite(const nlohmann::json& j) {
+  if (j.is_number_float()) return std::isfinite(j.get<double>());
+  if (j.is_structured())
+    for (const auto& item : j)
+      if (!allFinite(item)) return false;
+  return true;
+}
+
 void requireFinite(const nlohmann::json& j, const std::string& what) {
-  if (j.is_number_float() && !std::isfinite(j.get<double>())) {
-    throw std::runtime_error(what + " holds a non-finite number");
-  }
-  if (j.is_structured()) {
-    for (const auto& item : j) requireFinite(item, what);
-  }
+  if (!allFinite(j)) throw std::runtime_error(what + " holds a non-finite number");
 }
 
 }  // namespace rbsf::tools

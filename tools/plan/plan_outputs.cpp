@@ -12,6 +12,7 @@
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/tools/html_report.h"
+#include "rbsf/tools/run_files.h"
 #include "rbsf/tools/svg_animation.h"
 
 namespace rbsf::tools {
@@ -30,16 +31,12 @@ std::string poseText(const Pose& p) {
 }  // namespace
 
 PlanOutputs::PlanOutputs(PlanOutputOptions options) : o_(std::move(options)) {
-  const std::pair<const std::string*, const char*> outs[] = {
-      {&o_.json, "--out"}, {&o_.csv, "--csv"}, {&o_.svg, "--svg"}, {&o_.report, "--report"}};
-  for (std::size_t a = 0; a < 4; ++a) {
-    if (outs[a].first->empty()) continue;
-    checkWritable(*outs[a].first, outs[a].second);
-    for (std::size_t b = 0; b < a; ++b)
-      if (*outs[a].first == *outs[b].first)
-        throw InputError(std::string(outs[a].second) + ": '" + *outs[a].first +
-                         "' is also given to " + outs[b].second);
-  }
+  RunFiles files;  // no output replaces the cell, another output or a special file
+  files.addInput(o_.cell_label, "--cell");
+  files.addOutput(o_.json, "--out");
+  files.addOutput(o_.csv, "--csv");
+  files.addOutput(o_.svg, "--svg");
+  files.addOutput(o_.report, "--report");
   if (!std::isfinite(o_.svg_still) || o_.svg_still < 0.0)
     throw InputError("--svg-still: must be a time >= 0 s");
 }

@@ -7,10 +7,11 @@
 // first certified plan is written, else the best one, marked not certified.
 //
 // Exit status: 0 a certified plan written; 4 an exact plan written but not certified
-// (verdict and worst trial on stderr); 3 time limit without an exact plan (best distance
-// printed; the approximate plan, certified, written); 2 bad input (option, value, cell, a
-// start the fingers cannot hold, a goal no finger reaches); 130 stopped by SIGINT (best
-// plan so far written, not certified); 1 internal error.
+// (verdict and worst trial on stderr); 3 time limit without an exact plan (where the
+// closest plan ends, in metres and degrees; the approximate plan, certified, written); 2 bad
+// input (option, value, file, a start the fingers cannot hold, a goal no finger reaches);
+// 130 stopped by SIGINT, 143 by SIGTERM (best plan so far written, not certified); 1
+// internal error.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -60,6 +61,21 @@ void printOptimisation(const trajopt::RefineOutcome& r) {
               r.refined || o.message.empty() ? "" : (" (" + o.message + ")").c_str());
 }
 
+/// Where a plan leaves the part: "ends 0.123 m and 35.2 deg from the goal" (with "drops the
+/// part: it " before it when no contact carries the part at the end).
+std::string endText(const planner::Plan& plan, const planner::Problem& problem) {
+  if (plan.samples.empty() || !plan.samples.back().q.allFinite()) return "loses the part";
+  const planner::PlanSample& end = plan.samples.back();
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%sends %.3g m and %.3g deg from the goal",
+                end.f_n.maxCoeff() > 0.0 ? "" : "drops the part: it ",
+                std::hypot(end.q[layout::kX] - problem.goal.x, end.q[layout::kY] - problem.goal.y),
+                std::abs(planner::goalAngleError(end.q[layout::kPhi], problem.goal.phi,
+                                                 problem.absolute_angle)) *
+                    180.0 / M_PI);
+  return buf;
+}
+
 /// The certificate of the plan written: verdict, law and worst trial, in metres and degrees.
 void printCertificate(const planner::Certificate& c) {
   std::fputs(planner::certificateReportText(c).c_str(), stdout);
@@ -81,12 +97,12 @@ int run(int argc, char** argv) {
       "refined by the trajectory optimiser (unless --no-optimize). The first certified plan "
       "is written, else the best one found, marked not certified.\n"
       "Exit status: 0 a certified plan written; 4 an exact plan written but not certified "
-      "(verdict on stderr); 3 time limit without an exact plan (best distance printed; the "
-      "approximate plan written); 2 bad input (option, value, file, a start the fingers "
-      "cannot hold, a goal no finger reaches), with one message on stderr; 130 stopped by "
-      "SIGINT (Ctrl-C, during the search or the optimisation: the best plan so far is "
-      "written, not certified; a second Ctrl-C exits at once, writing nothing); 1 internal "
-      "error.");
+      "(verdict on stderr); 3 time limit without an exact plan (where the closest plan ends, "
+      "in metres and degrees; the approximate plan written); 2 bad input (option, value, "
+      "file, a start the fingers cannot hold, a goal no finger reaches), with one message on "
+      "stderr; 130 stopped by SIGINT, 143 by SIGTERM (Ctrl-C or kill, during the search or "
+      "the optimisation: the best plan so far is written, not certified; a second signal "
+      "exits at once, writing nothing); 1 internal error.");
   Options o;
   app.add_option("--cell", o.cell, "cell YAML file")->required();
   app.add_option("--start", o.start, "start pose x,y,phi (part at rest)")->required();
@@ -115,7 +131,9 @@ int run(int argc, char** argv) {
   app.add_flag("--reproducible", o.reproducible,
                "leave wall-clock fields (planning_time) out of the files: the same seed gives "
                "byte-identical files");
-  app.add_flag("--quiet", o.quiet, "no progress line");
+  app.add_flag("--quiet", o.quiet,
+               "no progress on stderr (else: a line per stage, and on a terminal a line "
+               "redrawn every second, elsewhere a line every 5 s of a search)");
   app.add_flag("--no-decisive-modes", o.no_decisive_modes,
                "let contacts change mode anywhere within a held torque (plans a tracking cell "
                "often cannot repeat; see README)");
@@ -176,21 +194,29 @@ int run(int argc, char** argv) {
   problem.absolute_angle = o.goal_angle == "absolute";
   problem.start_theta = parseAngle(o.start_theta, "--start-theta");
 
-  const bool tty = !o.quiet && isatty(fileno(stderr));
+  // Progress on stderr unless --quiet: on a terminal one line redrawn every second; else
+  // (a log, a pipe) a line per stage and one every 5 s of a search.
+  const bool tty = isatty(fileno(stderr));
   bool progress_shown = false;
-  if (tty) {
-    settings.progress = [&progress_shown](const planner::Progress& p) {
+  double last_line = -1e9;
+  if (!o.quiet) {
+    settings.progress = [&progress_shown, &last_line, tty](const planner::Progress& p) {
+      if (!tty && p.elapsed < last_line + 5.0) return;
+      if (!tty) last_line = p.elapsed;
       std::fprintf(stderr,
-                   "\rplan-reorientation: %6.1f s  %10llu propagations  best distance %.3g ",
-                   p.elapsed, static_cast<unsigned long long>(p.propagations), p.best_distance);
+                   "%splan-reorientation: %6.1f s  %10llu propagations  best distance %.3g%s",
+                   tty ? "\r" : "", p.elapsed, static_cast<unsigned long long>(p.propagations),
+                   p.best_distance, tty ? " " : "\n");
       std::fflush(stderr);
-      progress_shown = true;
+      progress_shown = tty;
     };
-    pipeline.on_stage = [&progress_shown](planner::PipelineStage st, const std::string& method,
-                                          std::uint32_t seed) {
+    pipeline.on_stage = [&progress_shown, &last_line](planner::PipelineStage st,
+                                                      const std::string& method,
+                                                      std::uint32_t seed) {
       std::fprintf(stderr, "%splan-reorientation: %s\n", progress_shown ? "\n" : "",
                    planner::stageText(st, method, seed).c_str());
       progress_shown = false;
+      last_line = -1e9;
     };
   }
   const RbsfModel model(loadCell(o.cell));
@@ -242,10 +268,12 @@ int run(int argc, char** argv) {
       if (found) {
         plan.certificate = {};
         outputs.write(model, plan);
+        std::printf("interrupted: the best plan so far %s%s, not certified\n",
+                    endText(plan, problem).c_str(), outputs.any() ? ", written" : "");
+      } else {
+        std::printf("interrupted: no plan yet, nothing written\n");
       }
-      std::printf("interrupted: best distance %.3g (tolerance units)%s, not certified\n",
-                  result.best_distance, found && outputs.any() ? ", best plan so far written" : "");
-      return kExitInterrupted;
+      return InterruptFlag::exitStatus();
     case planner::PipelineStatus::kCertified:
       outputs.write(model, plan);
       return 0;
@@ -255,42 +283,17 @@ int run(int argc, char** argv) {
                    planner::verdictText(plan.certificate).c_str());
       return kExitNotCertified;
     case planner::PipelineStatus::kNoPlan:
-      if (std::isfinite(result.best_distance))
-        std::printf(
-            "no plan within %.3g s: best distance %.3g (tolerance units: 1 = 1 cm or "
-            "2 deg)\n",
-            settings.time_limit, result.best_distance);
-      else
-        std::printf("no plan within %.3g s\n", settings.time_limit);
+      std::printf("no plan within %.3g s\n", settings.time_limit);
       return kExitTimeLimit;
     case planner::PipelineStatus::kApproximate:
       break;
   }
   outputs.write(model, plan);
-  if (method == "support") {
-    // The path was found; its closed-loop run missed the goal (the part left the supports).
-    if (plan.samples.empty() || !plan.samples.back().q.allFinite()) {
-      std::printf("no exact plan: the support path's closed-loop run lost the part%s\n",
-                  outputs.any() ? ", approximate plan written" : "");
-      return kExitTimeLimit;
-    }
-    const planner::PlanSample& end = plan.samples.back();
-    std::printf(
-        "no exact plan: the support path's closed-loop run %sends %.3g m and %.3g deg from "
-        "the goal%s\n",
-        end.f_n.maxCoeff() > 0.0 ? "" : "drops the part: it ",
-        std::hypot(end.q[layout::kX] - problem.goal.x, end.q[layout::kY] - problem.goal.y),
-        std::abs(planner::goalAngleError(end.q[layout::kPhi], problem.goal.phi,
-                                         problem.absolute_angle)) *
-            180.0 / M_PI,
-        outputs.any() ? ", approximate plan written" : "");
-    return kExitTimeLimit;
-  }
-  std::printf(
-      "no exact plan within %.3g s: best distance %.3g (tolerance units: 1 = 1 cm or "
-      "2 deg)%s; %llu propagations\n",
-      settings.time_limit, result.best_distance, outputs.any() ? ", approximate plan written" : "",
-      static_cast<unsigned long long>(plan.propagations));
+  // The support path was found but its closed-loop run missed the goal; a kinodynamic
+  // search ended at its closest approach.
+  std::printf("no exact plan within %.3g s: the %s %s%s\n", settings.time_limit,
+              method == "support" ? "support path's closed-loop run" : "closest plan",
+              endText(plan, problem).c_str(), outputs.any() ? ", approximate plan written" : "");
   return kExitTimeLimit;
 }
 

@@ -19,6 +19,7 @@
 #include "rbsf/planner/certificate.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
+#include "rbsf/tools/run_files.h"
 #include "rbsf/tools/tool_main.h"
 
 namespace rbsf::tools {
@@ -56,11 +57,11 @@ int run(int argc, char** argv) {
   settings.trials = static_cast<int>(parseInteger(trials_text, "--trials", 1, 100000));
   settings.seed = static_cast<std::uint64_t>(parseInteger(seed_text, "--seed", 1, 1LL << 53));
   settings.open_loop = open_loop;
-  if (!out.empty()) checkWritable(out, "--out");
-  if (!csv.empty()) checkWritable(csv, "--csv");
-  if (!out.empty() && out == csv) throw InputError("--csv: '" + csv + "' is also --out");
-  if (out == plan_path || csv == plan_path || out == cell || csv == cell)
-    throw InputError("--out/--csv: an output may not overwrite an input");
+  RunFiles files;  // no output replaces an input, another output or a special file
+  files.addInput(cell, "--cell");
+  files.addInput(plan_path, "--plan");
+  files.addOutput(out, "--out");
+  files.addOutput(csv, "--csv");
 
   const RbsfModel model(loadCell(cell));
   const planner::Plan plan = planner::readPlanJson(plan_path);
@@ -71,7 +72,7 @@ int run(int argc, char** argv) {
   const planner::Certificate c = planner::certify(model, plan, settings, nullptr, &cancel);
   if (InterruptFlag::raised()) {
     std::printf("interrupted: nothing written\n");
-    return kExitInterrupted;
+    return InterruptFlag::exitStatus();
   }
   std::printf("plan %s on cell %s\n", plan_path.c_str(), cell.c_str());
   std::fputs(planner::certificateReportText(c).c_str(), stdout);

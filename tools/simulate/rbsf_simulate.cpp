@@ -21,6 +21,7 @@
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/controls_file.h"
+#include "rbsf/tools/run_files.h"
 #include "rbsf/tools/svg_animation.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/tools/trajectory_writer.h"
@@ -31,6 +32,9 @@ namespace {
 constexpr double kMaxTimeStep = 0.1;    // [s]: beyond this the contact model is meaningless
 constexpr int kMaxPhasesPrinted = 40;   // longer phase sequences are summarised
 constexpr double kSvgFrameTime = 0.01;  // [s] between frames of --svg
+constexpr long kMaxSteps = 10000000;    // simulator steps of one run (10^4 s at 1 ms)
+constexpr long kMaxSvgFrames = 60000;   // --svg frames (10 minutes at 10 ms)
+constexpr double kFallDepth = 1.0;      // [m] below its start the part has surely fallen
 
 struct Options {
   std::string cell, start, theta = "0", controls, dt = "0.001", out, svg;
@@ -38,21 +42,9 @@ struct Options {
 
 /// Limits of the cell on tau, checked per segment (inputs beyond them are not a plan).
 void checkLimits(const RbsfModel& model, const ControlSchedule& schedule) {
-  const Cell& cell = model.cell();
-  for (const ControlSegment& seg : schedule.segments()) {
-    const std::string where = schedule.label() + ":" + std::to_string(seg.line) + ": column ";
-    if (std::abs(seg.tau[layout::kTauTheta]) > cell.base.torque_limit)
-      throw InputError(where + "'tau_theta': " + std::to_string(seg.tau[layout::kTauTheta]) +
-                       " N m exceeds the base torque limit " +
-                       std::to_string(cell.base.torque_limit) + " N m");
-    for (int i = 0; i < model.numFingers(); ++i) {
-      const double f = seg.tau[layout::fingerForce(i)];
-      if (std::abs(f) > cell.fingers[i].force_limit)
-        throw InputError(where + "'tau_" + std::to_string(i + 1) + "': " + std::to_string(f) +
-                         " N exceeds finger " + std::to_string(i + 1) + "'s force limit " +
-                         std::to_string(cell.fingers[i].force_limit) + " N");
-    }
-  }
+  for (const ControlSegment& seg : schedule.segments())
+    checkInputLimits(model.cell(), seg.tau,
+                     schedule.label() + ":" + std::to_string(seg.line) + ": column ");
 }
 
 /// Steps of each segment: the segment boundaries rounded to the step grid, so rounding
@@ -63,11 +55,16 @@ std::vector<long> stepsPerSegment(const ControlSchedule& schedule, double h) {
   long done = 0;
   for (const ControlSegment& seg : schedule.segments()) {
     end += seg.duration;
+    if (!(end / h <= static_cast<double>(kMaxSteps)))
+      throw InputError(schedule.label() + ":" + std::to_string(seg.line) +
+                       ": column 'duration': the run would take more than " +
+                       std::to_string(kMaxSteps) + " steps of " + numberText(h) +
+                       " s (the limit of one run); shorten it or take a larger --dt");
     const long upto = std::lround(end / h);
     if (upto <= done)
       throw InputError(schedule.label() + ":" + std::to_string(seg.line) +
-                       ": column 'duration': " + std::to_string(seg.duration) +
-                       " s is shorter than the time step " + std::to_string(h) + " s");
+                       ": column 'duration': " + numberText(seg.duration) +
+                       " s is shorter than the time step " + numberText(h) + " s");
     steps.push_back(upto - done);
     done = upto;
   }
@@ -159,20 +156,32 @@ int run(int argc, char** argv) {
   const double theta = parseAngle(o.theta, "--theta");
   const BaseParams& base = model.cell().base;
   if (theta < base.theta_min || theta > base.theta_max)
-    throw InputError("--theta: " + std::to_string(theta) + " rad is outside the base range [" +
-                     std::to_string(base.theta_min) + ", " + std::to_string(base.theta_max) +
-                     "] rad");
+    throw InputError("--theta: " + numberText(theta) + " rad is outside the base range [" +
+                     numberText(base.theta_min) + ", " + numberText(base.theta_max) + "] rad");
   const double h = parseNumber(o.dt, "--dt");
   if (!(h > 0.0 && h <= kMaxTimeStep))
-    throw InputError("--dt: must be in (0, " + std::to_string(kMaxTimeStep) + "] s, got " + o.dt);
+    throw InputError("--dt: must be in (0, " + numberText(kMaxTimeStep) + "] s, got " + o.dt);
   std::unique_ptr<TrajectoryWriter> writer;
   if (!o.out.empty()) writer = std::make_unique<TrajectoryWriter>(o.out, m);
-  if (!o.out.empty()) checkWritable(o.out, "--out");
-  if (!o.svg.empty()) checkWritable(o.svg, "--svg");
-  if (!o.svg.empty() && o.svg == o.out) throw InputError("--svg: '" + o.svg + "' is also --out");
+  RunFiles files;  // no output replaces an input, another output or a special file
+  files.addInput(o.cell, "--cell");
+  files.addInput(o.controls, "--controls");
+  files.addOutput(o.out, "--out");
+  files.addOutput(o.svg, "--svg");
   const ControlSchedule schedule = ControlSchedule::load(o.controls, m);
   checkLimits(model, schedule);
   const std::vector<long> steps = stepsPerSegment(schedule, h);
+  long total_steps = 0;
+  for (long n : steps) total_steps += n;
+  if (writer && static_cast<std::size_t>(total_steps) > writer->maxSamples())
+    throw InputError("--out: the run takes " + std::to_string(total_steps) +
+                     " steps, a sample each; at most " + std::to_string(writer->maxSamples()) +
+                     " are written (shorten the run or take a larger --dt)");
+  const long frame_stride = std::max(1L, std::lround(kSvgFrameTime / h));
+  if (!o.svg.empty() && total_steps / frame_stride > kMaxSvgFrames)
+    throw InputError("--svg: the run is " + numberText(total_steps * h) +
+                     " s long; an animation shows at most " +
+                     numberText(kMaxSvgFrames * kSvgFrameTime) + " s");
   VecQ q0;
   try {
     q0 = restingConfiguration(model, pose, theta);
@@ -186,30 +195,33 @@ int run(int argc, char** argv) {
   SimulatorWorkspace ws(m);
   SimState state(q0, VecQ::Zero(m + 4));
   Summary summary;
+  double fell_at = -1.0;
   std::vector<TrajectorySample> frames;  // for --svg
-  const long frame_stride = std::max(1L, std::lround(kSvgFrameTime / h));
   std::vector<VecU> taus;
   for (const auto& seg : schedule.segments()) taus.push_back(seg.tau);
   HeldInputs inputs(steps, taus);
   const long last = inputs.totalSteps() - 1;
-  const long total =
-      rollout(sim, state, inputs.totalSteps(), ws, inputs,
-              [&](const SimState& now, const StepReport& report, const VecU& tau, long n) {
-                if (!now.q.allFinite() || !now.v.allFinite())
-                  throw std::runtime_error(
-                      "the simulation diverged at t = " + std::to_string(now.t) + " s");
-                summary.add(report, now.t, m);
-                const TrajectorySample sample = trajectorySample(now, report, tau);
-                if (writer) writer->add(sample);
-                if (!o.svg.empty()) {
-                  if (frames.empty()) {  // t = 0: the start at rest, with the first step's forces
-                    frames.push_back(sample);
-                    frames.back().t = 0.0, frames.back().q = q0, frames.back().v.setZero();
-                  }
-                  if ((n + 1) % frame_stride == 0 || n == last) frames.push_back(sample);
-                }
-                return true;
-              });
+  const long total = rollout(
+      sim, state, inputs.totalSteps(), ws, inputs,
+      [&](const SimState& now, const StepReport& report, const VecU& tau, long n) {
+        if (!now.q.allFinite() || !now.v.allFinite())
+          throw std::runtime_error("the simulation diverged at t = " + numberText(now.t) + " s");
+        summary.add(report, now.t, m);
+        const TrajectorySample sample = trajectorySample(now, report, tau);
+        if (writer) writer->add(sample);
+        if (!o.svg.empty()) {
+          if (frames.empty()) {  // t = 0: the start at rest, with the first step's forces
+            frames.push_back(sample);
+            frames.back().t = 0.0, frames.back().q = q0, frames.back().v.setZero();
+          }
+          if ((n + 1) % frame_stride == 0 || n == last) frames.push_back(sample);
+        }
+        if (now.q[layout::kY] < q0[layout::kY] - kFallDepth) {
+          fell_at = now.t;  // off the fingers: what follows is a free fall
+          return false;
+        }
+        return true;
+      });
   // Everything is formatted before any file is written; each file is written atomically.
   std::string svg;
   if (!o.svg.empty()) {
@@ -221,6 +233,11 @@ int run(int argc, char** argv) {
   if (writer) writer->commit();
   if (!o.svg.empty()) writeFileAtomically(o.svg, svg, "--svg");
   printSummary(summary, state, model, h, o, total, writer ? writer->size() : 0);
+  if (fell_at >= 0.0)
+    std::fprintf(stderr,
+                 "rbsf-simulate: warning: the part fell off the fingers (%g m below its start "
+                 "at t = %.6g s); the simulation stopped there\n",
+                 kFallDepth, fell_at);
   return 0;
 }
 

@@ -34,6 +34,11 @@ struct TrajectorySample {
 /// \brief The CSV header line for m fingers (no newline).
 std::string trajectoryCsvHeader(int m);
 
+/// \brief Append one sample's CSV line (with its newline) to `text`.
+/// \throws std::runtime_error for a non-finite number or a sample sized for other than m
+///         fingers (`text` may then hold part of the line).
+void appendTrajectoryCsvRow(std::string& text, const TrajectorySample& s, int m);
+
 /// \brief Header and one line per sample, each ending in a newline.
 /// \throws std::runtime_error for a non-finite number or a sample sized for other than m
 ///         fingers (nothing is returned, so nothing half-formatted reaches a file).

@@ -40,4 +40,8 @@ struct BenchProblem {
 ///        an unreadable file, duplicate names or an empty list.
 std::vector<BenchProblem> loadProblemSuite(const std::string& path);
 
+/// \brief The problems of a problem file's text; `path` names it in messages and its folder
+///        resolves the cells (each cell file is read and checked).
+std::vector<BenchProblem> parseProblemSuite(const std::string& text, const std::string& path);
+
 }  // namespace rbsf::bench

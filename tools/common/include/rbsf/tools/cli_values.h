@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/types.h"
 
@@ -28,7 +29,13 @@ double parseNumber(std::string_view text, std::string_view what);
 ///        lo..hi (got <text>)" otherwise.
 long long parseInteger(std::string_view text, std::string_view what, long long lo, long long hi);
 
-/// \brief An angle in radians: "1.2" (radians), "1.2rad" or "30deg" (converted).
+/// \brief The largest |angle| accepted [rad]: 100 turns.
+inline constexpr double kMaxAngle = 200.0 * 3.14159265358979323846;
+/// \brief The largest |speed| accepted in a velocity [m/s or rad/s].
+inline constexpr double kMaxSpeed = 100.0;
+
+/// \brief An angle in radians: "1.2" (radians), "1.2rad" or "30deg" (converted); at most
+///        kMaxAngle in magnitude.
 double parseAngle(std::string_view text, std::string_view what);
 
 /// \brief Exactly `expected_size` comma-separated numbers. `layout` (e.g.
@@ -45,8 +52,16 @@ rbsf::Pose parsePose(std::string_view text, std::string_view what);
 VecQ parseConfig(std::string_view text, std::string_view what, int m);
 
 /// \brief A velocity v = dq/dt (same order as q), plain numbers in SI units (rad/s for
-///        the angular rates).
+///        the angular rates), each at most kMaxSpeed in magnitude.
 VecQ parseVelocity(std::string_view text, std::string_view what, int m);
+
+/// \brief A number for a message, with 6 significant digits ("1e-300", "0.001", "250").
+std::string numberText(double x);
+
+/// \brief Inputs within the cell's limits: |tau_theta| <= the base torque limit and
+///        |tau_i| <= finger i's force limit.
+/// \throws InputError "<where>'tau_2': 250 N exceeds finger 2's force limit 200 N".
+void checkInputLimits(const Cell& cell, const VecU& tau, const std::string& where);
 
 /// \brief The layout description used in length errors: "x,y,phi,theta,l1..l3" for a
 ///        configuration, "dx,dy,dphi,dtheta,dl1..dl3" for a velocity.

@@ -40,6 +40,9 @@ int toolMain(const char* name, int argc, char** argv, const std::function<int(in
 /// \brief A JSON array of an Eigen vector's entries.
 nlohmann::json vectorJson(const Eigen::Ref<const Eigen::VectorXd>& v);
 
+/// \brief True when every number in `j` is finite.
+bool allFinite(const nlohmann::json& j);
+
 /// \brief Throw std::runtime_error naming `what` if `j` holds a NaN or an infinity
 ///        anywhere (outputs never carry NaN).
 void requireFinite(const nlohmann::json& j, const std::string& what);
