@@ -16,6 +16,8 @@ packages=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libxml2-utils
+  # Headless Chromium renders the HTML report in the picture tests.
+  chromium
   clang-14 libclang-rt-14-dev
 )
 

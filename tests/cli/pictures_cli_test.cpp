@@ -186,3 +186,43 @@ TEST(SimulatePictures, BadInputLeavesNoSvg) {
 }
 
 }  // namespace
+
+namespace {
+
+/// The page as headless Chromium (Debian's chromium, installed by scripts/install-deps.sh)
+/// builds it: its DOM on stdout, the console on stderr.
+Result renderInChromium(const std::string& page, const std::string& screenshot = "") {
+  const std::string profile = temp("chromium_profile");
+  std::system(("mkdir -p " + profile).c_str());
+  return run("chromium --headless --no-sandbox --disable-gpu --user-data-dir=" + profile +
+             " --enable-logging=stderr --v=0 --window-size=1000,1400 " +
+             (screenshot.empty() ? "--dump-dom" : "--screenshot=" + screenshot) + " file://" +
+             page);
+}
+
+}  // namespace
+
+TEST(PlanPictures, TheReportLoadsInChromiumWithItsVerdictScaleLegendGoalBandAndLimits) {
+  ASSERT_EQ(std::system("command -v chromium >/dev/null"), 0)
+      << "chromium is missing: scripts/install-deps.sh installs it";
+  const std::string html = temp("chromium_report.html"), png = temp("chromium_report.png");
+  const Result plan = run(kPlanExe + " --cell " + kCellDir +
+                          "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --quiet "
+                          "--trials 4 --report " +
+                          html);
+  ASSERT_EQ(plan.status, 0) << plan.out << plan.err;
+  const Result dom = renderInChromium(html);
+  ASSERT_EQ(dom.status, 0) << dom.err;
+  // Loaded without a script error (the page has no script; an error would say otherwise).
+  EXPECT_EQ(dom.err.find("Uncaught"), std::string::npos) << dom.err;
+  EXPECT_EQ(dom.err.find(":CONSOLE:"), std::string::npos) << dom.err;
+  for (const char* what :
+       {"id=\"verdict\" class=\"verdict good\"", "certified: 4/4 trials", "class=\"scale-bar\"",
+        "class=\"world-axes\"", "class=\"start\"", "class=\"force-legend\"", "goal phi +- 2.0 deg",
+        "limit +", "stroke limit", "<polyline class=\"series\""})
+    EXPECT_NE(dom.out.find(what), std::string::npos) << what;
+  const Result shot = renderInChromium(html, png);
+  ASSERT_EQ(shot.status, 0) << shot.err;
+  EXPECT_GT(slurp(png).size(), 20000u);  // a drawn page, not a blank one
+  EXPECT_EQ(slurp(png).substr(1, 3), "PNG");
+}

@@ -191,10 +191,43 @@ TEST_F(PicturesTest, ReportHasTheAnimationAndFivePlotsOfEverySample) {
   // Series: 2 angles + m strokes + 1 + m finger forces + m normal forces, each a polyline
   // with one point per sample.
   const int m = model.numFingers();
-  EXPECT_EQ(count(html, "<polyline"), static_cast<std::size_t>(3 + 3 * m));
-  const std::size_t p = html.find("<polyline points=\"");
-  const std::string pts = html.substr(p + 18, html.find('"', p + 18) - p - 18);
+  EXPECT_EQ(count(html, "<polyline class=\"series\""), static_cast<std::size_t>(3 + 3 * m));
+  // Each over a white halo of the same points (visible on every phase's shading).
+  EXPECT_EQ(count(html, "<polyline"), static_cast<std::size_t>(2 * (3 + 3 * m)));
+  const std::size_t p = html.find("<polyline class=\"series\" points=\"");
+  const std::string pts = html.substr(p + 33, html.find('"', p + 33) - p - 33);
   EXPECT_EQ(count(pts, ","), frames.size());
+}
+
+TEST_F(PicturesTest, PicturesCarryScaleAxesStartLegendGoalBandAndLimits) {
+  SvgAnimationOptions o;
+  o.goal = Pose{0.1, 0.40, -2 * M_PI + 0.3};  // goals compare modulo a turn
+  o.angle_tolerance = 2.0 * M_PI / 180;
+  const std::string svg = SvgAnimation(model, frames, o).render();
+  for (const char* what : {"class=\"scale-bar\"", ">0.1 m<", "class=\"world-axes\"",
+                           "class=\"start\"", "class=\"force-legend\"", ">goal<", ">start<"})
+    EXPECT_EQ(count(svg, what), 1u) << what;
+  // The force legend: a round number of newtons and each contact's peak, in newtons.
+  const std::size_t legend = svg.find("class=\"force-legend\"");
+  const std::string text = svg.substr(legend, svg.find("</g>", legend) - legend);
+  EXPECT_NE(text.find(" N; peaks 1: "), std::string::npos) << text;
+  double peak = 0.0;
+  for (const TrajectorySample& f : frames) peak = std::max(peak, f.f_n[0]);
+  EXPECT_NE(text.find("1: " + std::to_string(static_cast<long>(std::lround(peak))) + " N"),
+            std::string::npos)
+      << text << " peak " << peak;
+
+  const std::string html = HtmlReport(model, frames, o, {}).render();
+  // The angle plot's goal band sits at the turn nearest the part's last angle, in degrees.
+  const std::size_t band = html.find("goal phi +- 2.0 deg");
+  ASSERT_NE(band, std::string::npos);
+  // Limit lines: base torque and finger forces at the cell's limits, strokes at their ends.
+  const Cell& cell = model.cell();
+  EXPECT_NE(html.find("limit +" + std::to_string(static_cast<long>(cell.base.torque_limit))),
+            std::string::npos);
+  EXPECT_NE(html.find("limit -" + std::to_string(static_cast<long>(cell.fingers[0].force_limit))),
+            std::string::npos);
+  EXPECT_GE(count(html, ">stroke limit<"), 2u);
 }
 
 TEST(NiceTicks, HugeOrFarFromZeroRangesStayFinite) {

@@ -3,6 +3,9 @@
 
 #include "rbsf/tools/html_report.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/tools/svg_format.h"
 #include "rbsf/tools/svg_time_plot.h"
@@ -45,9 +48,37 @@ std::string HtmlReport::plots() const {
   SvgTimePlot angles("Angles", "deg", t, phases);
   angles.add(series("phi (part)", 0, [&](const auto& f) { return f.q[layout::kPhi] * kDeg; }));
   angles.add(series("theta (base)", 1, [&](const auto& f) { return f.q[layout::kTheta] * kDeg; }));
+  if (animation_.goal) {
+    // The goal angle as the turn nearest the part's last angle (goals compare modulo 360).
+    const double last = frames_.back().q[layout::kPhi];
+    const double goal =
+        animation_.goal->phi + 2 * M_PI * std::round((last - animation_.goal->phi) / (2 * M_PI));
+    const double tol = animation_.angle_tolerance;
+    angles.addReference({"goal phi +- " + fixedNumber(tol * kDeg, 1) + " deg", "#1e8449",
+                         (goal - tol) * kDeg, (goal + tol) * kDeg});
+  }
   SvgTimePlot strokes("Finger strokes", "m", t, phases);
   SvgTimePlot base("Base torque", "N m", t, phases);
   SvgTimePlot fingers("Finger forces tau_i", "N", t, phases);
+  const Cell& cell = model_.cell();
+  auto limits = [](SvgTimePlot& plot, double limit, const std::string& what) {
+    plot.addReference({what + " +" + fixedNumber(limit, 0), "#c0392b", limit, limit});
+    plot.addReference({what + " -" + fixedNumber(limit, 0), "#c0392b", -limit, -limit});
+  };
+  limits(base, cell.base.torque_limit, "limit");
+  std::vector<double> force_limits;
+  for (const FingerParams& f : cell.fingers)
+    if (std::find(force_limits.begin(), force_limits.end(), f.force_limit) == force_limits.end())
+      force_limits.push_back(f.force_limit);
+  for (double l : force_limits) limits(fingers, l, force_limits.size() > 1 ? "a limit" : "limit");
+  for (int i = 0; i < m; ++i) {
+    const FingerParams& f = cell.fingers[i];
+    if (i == 0 || f.stroke_min != cell.fingers[0].stroke_min ||
+        f.stroke_max != cell.fingers[0].stroke_max) {
+      strokes.addReference({"stroke limit", "#c0392b", f.stroke_min, f.stroke_min});
+      strokes.addReference({"stroke limit", "#c0392b", f.stroke_max, f.stroke_max});
+    }
+  }
   SvgTimePlot normal("Contact normal forces f_n", "N", t, phases);
   base.add(series("tau_theta", 0, [&](const auto& f) { return f.tau[layout::kTauTheta]; }));
   for (int i = 0; i < m; ++i) {

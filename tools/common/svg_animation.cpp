@@ -10,6 +10,7 @@
 #include "rbsf/dynamics/model_data.h"
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/tools/svg_format.h"
+#include "rbsf/tools/svg_time_plot.h"
 
 namespace rbsf::tools {
 namespace {
@@ -59,13 +60,17 @@ SvgAnimation::SvgAnimation(const RbsfModel& model, std::vector<TrajectorySample>
   // Contact frames of every sample (closest points tracked from frame to frame).
   ModelData data(m);
   double max_fn = 0.0;
+  peak_fn_.assign(m, 0.0);
   contacts_.resize(frames_.size());
   for (std::size_t k = 0; k < frames_.size(); ++k) {
     model_.updateContacts(frames_[k].q, data);
     for (int i = 0; i < m; ++i) {
       const ContactFrame& c = data.contacts[i];
       contacts_[k].push_back({c.tip, c.normal, std::abs(c.gap) <= kTouching});
-      if (contacts_[k].back().touching) max_fn = std::max(max_fn, frames_[k].f_n[i]);
+      if (contacts_[k].back().touching) {
+        max_fn = std::max(max_fn, frames_[k].f_n[i]);
+        peak_fn_[i] = std::max(peak_fn_[i], frames_[k].f_n[i]);
+      }
     }
   }
   force_scale_ = max_fn > 0.0 ? kLongestForce / max_fn : 0.0;
@@ -190,6 +195,10 @@ std::string SvgAnimation::drawPart() const {
          "\" fill=\"none\" stroke=\"#1e8449\" stroke-width=\"4\" " +
          "stroke-dasharray=\"14 10\"/><circle r=\"7\" fill=\"#1e8449\"/></g>";
   }
+  const VecQ& q0 = frames_.front().q;
+  s += "<g class=\"start\" transform=\"translate(" + mm(q0[layout::kX]) + " " + mm(q0[layout::kY]) +
+       ") rotate(" + deg(q0[layout::kPhi]) + ")\"><path d=\"" + outline +
+       "\" fill=\"none\" stroke=\"#808b96\" stroke-width=\"3\" stroke-dasharray=\"6 8\"/></g>";
   std::vector<std::string> at, phi;
   for (const TrajectorySample& f : frames_) {
     at.push_back(mm(f.q[layout::kX]) + " " + mm(f.q[layout::kY]));
@@ -278,10 +287,83 @@ std::string SvgAnimation::drawLabels() const {
   return s + "</rect></g>";
 }
 
+std::string SvgAnimation::drawLegend(double font) const {
+  const double small = 0.62 * font;
+  double y = -min_y_ + 2.3 * font, mid = y - 0.3 * font;
+  double x = min_x_ + 0.6 * font;
+  // A second row when an item (its drawing `len` and text) would pass the right edge.
+  auto fit = [&](double len, const std::string& t) {
+    if (x + len + small * 0.55 * static_cast<double>(t.size()) <= max_x_) return;
+    x = min_x_ + 0.6 * font, y += 1.1 * font, mid += 1.1 * font;
+  };
+  const std::string p = options_.id_prefix;
+  auto text = [&](double at, const std::string& t) {
+    return "<text x=\"" + fixedNumber(at, 1) + "\" y=\"" + fixedNumber(y, 1) + "\">" +
+           escapeXml(t) + "</text>";
+  };
+  auto advance = [&](const std::string& t) { x += small * (0.55 * t.size() + 1.2); };
+  std::string s = "<g class=\"legend\" font-family=\"sans-serif\" font-size=\"" +
+                  fixedNumber(small, 1) + "\" fill=\"#17202a\">";
+  // Scale bar: 100 mm of the drawing.
+  s += "<g class=\"scale-bar\" stroke=\"#17202a\" stroke-width=\"3\"><line x1=\"" +
+       fixedNumber(x, 1) + "\" y1=\"" + fixedNumber(mid, 1) + "\" x2=\"" + fixedNumber(x + 100, 1) +
+       "\" y2=\"" + fixedNumber(mid, 1) + "\"/>";
+  for (const double e : {x, x + 100})
+    s += "<line x1=\"" + fixedNumber(e, 1) + "\" y1=\"" + fixedNumber(mid - 0.25 * font, 1) +
+         "\" x2=\"" + fixedNumber(e, 1) + "\" y2=\"" + fixedNumber(mid + 0.25 * font, 1) + "\"/>";
+  s += "</g>" + text(x + 100 + 0.3 * font, "0.1 m");
+  x += 100 + 0.3 * font;
+  advance("0.1 m");
+  // Force arrow: a round number of newtons at the drawing's scale, and each peak.
+  s += "<g class=\"force-legend\">";
+  if (force_scale_ > 0.0) {
+    const double peak = *std::max_element(peak_fn_.begin(), peak_fn_.end());
+    const std::vector<double> ticks = niceTicks(0.0, 0.25 * peak, 1);
+    const double newtons = ticks.size() > 1 ? ticks[1] : peak;
+    const double len = newtons * force_scale_ * kMm;
+    std::string label = "f_n " + fixedNumber(newtons, newtons < 10 ? 1 : 0) + " N; peaks";
+    for (std::size_t i = 0; i < peak_fn_.size(); ++i)
+      label += (i ? ", " : " ") + std::to_string(i + 1) + ": " + fixedNumber(peak_fn_[i], 0) + " N";
+    fit(len, label);
+    s += "<line x1=\"" + fixedNumber(x, 1) + "\" y1=\"" + fixedNumber(mid, 1) + "\" x2=\"" +
+         fixedNumber(x + len, 1) + "\" y2=\"" + fixedNumber(mid, 1) +
+         "\" stroke=\"#c0392b\" stroke-width=\"7\" marker-end=\"url(#" + p + "-arrow)\"/>";
+    x += len + 0.3 * font;
+    s += text(x, label);
+    advance(label);
+  } else {
+    s += text(x, "no contact force");
+    advance("no contact force");
+  }
+  s += "</g>";
+  // Normal, goal and start.
+  fit(40, "normal");
+  s += "<line x1=\"" + fixedNumber(x, 1) + "\" y1=\"" + fixedNumber(mid, 1) + "\" x2=\"" +
+       fixedNumber(x + 40, 1) + "\" y2=\"" + fixedNumber(mid, 1) +
+       "\" stroke=\"#2874a6\" stroke-width=\"4\"/>" + text(x + 40 + 0.3 * font, "normal");
+  x += 40 + 0.3 * font;
+  advance("normal");
+  if (options_.goal) {
+    fit(40, "goal");
+    s += "<line x1=\"" + fixedNumber(x, 1) + "\" y1=\"" + fixedNumber(mid, 1) + "\" x2=\"" +
+         fixedNumber(x + 40, 1) + "\" y2=\"" + fixedNumber(mid, 1) +
+         "\" stroke=\"#1e8449\" stroke-width=\"4\" stroke-dasharray=\"14 10\"/>" +
+         text(x + 40 + 0.3 * font, "goal");
+    x += 40 + 0.3 * font;
+    advance("goal");
+  }
+  fit(40, "start");
+  s += "<line x1=\"" + fixedNumber(x, 1) + "\" y1=\"" + fixedNumber(mid, 1) + "\" x2=\"" +
+       fixedNumber(x + 40, 1) + "\" y2=\"" + fixedNumber(mid, 1) +
+       "\" stroke=\"#808b96\" stroke-width=\"3\" stroke-dasharray=\"6 8\"/>" +
+       text(x + 40 + 0.3 * font, "start");
+  return s + "</g>";
+}
+
 std::string SvgAnimation::render() const {
   const double w = max_x_ - min_x_, font = w / 34.0;
   const double vx = min_x_, vy = -max_y_ - 4.2 * font, vw = w,
-               vh = (max_y_ - min_y_) + 4.2 * font + 1.3 * font;
+               vh = (max_y_ - min_y_) + 4.2 * font + 4.0 * font;  // legend: two rows
   const std::string p = options_.id_prefix;
   std::string s =
       "<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"" + p + "\" viewBox=\"" + fixedNumber(vx, 1) +
@@ -291,12 +373,26 @@ std::string SvgAnimation::render() const {
   s += "<defs><marker id=\"" + p +
        "-arrow\" viewBox=\"0 0 10 10\" refX=\"8\" refY=\"5\" markerWidth=\"4\" "
        "markerHeight=\"4\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 Z\" fill=\"#c0392b\"/>"
+       "</marker><marker id=\"" +
+       p +
+       "-axis\" viewBox=\"0 0 10 10\" refX=\"8\" refY=\"5\" markerWidth=\"5\" "
+       "markerHeight=\"5\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 Z\" fill=\"#17202a\"/>"
        "</marker></defs>";
   s += "<rect x=\"" + fixedNumber(vx, 1) + "\" y=\"" + fixedNumber(vy, 1) + "\" width=\"" +
        fixedNumber(vw, 1) + "\" height=\"" + fixedNumber(vh, 1) + "\" fill=\"#ffffff\"/>";
   // World frame: x right, y up (MODEL.md); SVG's y points down, hence the flip.
-  s += "<g transform=\"scale(1,-1)\">" + drawBase() + drawPart() + drawContacts() + "</g>";
+  // The world axes at the base axis, 100 mm each, drawn last so that nothing hides them.
+  const std::string axes =
+      "<g class=\"world-axes\" stroke=\"#17202a\" stroke-width=\"3\" marker-end=\"url(#" + p +
+      "-axis)\"><line x1=\"0\" y1=\"0\" x2=\"100\" y2=\"0\"/><line x1=\"0\" y1=\"0\" x2=\"0\" "
+      "y2=\"100\"/></g>";
+  s += "<g transform=\"scale(1,-1)\">" + drawBase() + drawPart() + drawContacts() + axes + "</g>";
+  s += "<g class=\"world-axes-labels\" font-family=\"sans-serif\" font-size=\"" +
+       fixedNumber(0.7 * font, 1) + "\" fill=\"#17202a\"><text x=\"112\" y=\"" +
+       fixedNumber(0.25 * font, 1) + "\">x</text><text x=\"" + fixedNumber(-0.25 * font, 1) +
+       "\" y=\"-112\" text-anchor=\"middle\">y</text></g>";
   s += drawLabels();
+  s += drawLegend(font);
   return s + "</svg>";
 }
 

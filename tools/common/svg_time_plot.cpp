@@ -53,6 +53,13 @@ void SvgTimePlot::add(PlotSeries series) {
   series_.push_back(std::move(series));
 }
 
+void SvgTimePlot::addReference(PlotReference reference) {
+  if (!std::isfinite(reference.lo) || !std::isfinite(reference.hi) || reference.hi < reference.lo)
+    throw std::invalid_argument("SvgTimePlot: reference '" + reference.label +
+                                "' needs finite lo <= hi");
+  references_.push_back(std::move(reference));
+}
+
 std::string SvgTimePlot::render(int width, int height) const {
   const double left = 64, right = width - 12.0, top = 26, bottom = height - 34.0;
   const double t0 = times_.front(), t1 = std::max(times_.back(), t0 + 1e-9);
@@ -63,6 +70,7 @@ std::string SvgTimePlot::render(int width, int height) const {
       lo = std::min(lo, v), hi = std::max(hi, v);
     }
   if (series_.empty()) lo = 0, hi = 1;
+  for (const PlotReference& r : references_) lo = std::min(lo, r.lo), hi = std::max(hi, r.hi);
   const std::vector<double> yt = niceTicks(lo, hi, 5);
   lo = yt.front(), hi = yt.back();
   auto X = [&](double t) { return left + (t - t0) / (t1 - t0) * (right - left); };
@@ -83,6 +91,20 @@ std::string SvgTimePlot::render(int width, int height) const {
          "\" fill=\"" + phaseColor(phases_[a]) + "\"><title>" +
          escapeXml(phaseDescription(phases_[a])) + "</title></rect>";
     a = b + 1;
+  }
+  for (const PlotReference& r : references_) {
+    const bool band = r.hi > r.lo;
+    s += "<g class=\"reference\">";
+    if (band)
+      s += "<rect x=\"" + f1(left) + "\" y=\"" + f1(Y(r.hi)) + "\" width=\"" + f1(right - left) +
+           "\" height=\"" + f1(std::max(0.5, Y(r.lo) - Y(r.hi))) + "\" fill=\"" + r.color +
+           "\" fill-opacity=\"0.25\"/>";
+    const double at = band ? 0.5 * (r.lo + r.hi) : r.lo;
+    s += "<line x1=\"" + f1(left) + "\" x2=\"" + f1(right) + "\" y1=\"" + f1(Y(at)) + "\" y2=\"" +
+         f1(Y(at)) + "\" stroke=\"" + r.color +
+         "\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/><text x=\"" + f1(right - 4) +
+         "\" y=\"" + f1(Y(at) - 4) + "\" text-anchor=\"end\" fill=\"" + r.color + "\">" +
+         escapeXml(r.label) + "</text></g>";
   }
   for (const double v : yt) {
     s += "<line x1=\"" + f1(left) + "\" x2=\"" + f1(right) + "\" y1=\"" + f1(Y(v)) + "\" y2=\"" +
@@ -120,7 +142,9 @@ std::string SvgTimePlot::render(int width, int height) const {
       if (k) pts += ' ';
       pts += f1(X(times_[k])) + "," + f1(Y(ser.values[k]));
     }
-    s += "<polyline points=\"" + pts + "\" fill=\"none\" stroke=\"" + ser.color +
+    s += "<polyline points=\"" + pts +
+         "\" fill=\"none\" stroke=\"#ffffff\" stroke-width=\"4.5\" stroke-opacity=\"0.9\"/>";
+    s += "<polyline class=\"series\" points=\"" + pts + "\" fill=\"none\" stroke=\"" + ser.color +
          "\" stroke-width=\"1.8\"><title>" + escapeXml(ser.name) + "</title></polyline>";
   }
   // A cursor in step with the animation (one play = the sample time span).

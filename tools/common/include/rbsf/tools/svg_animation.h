@@ -14,7 +14,11 @@
 ///   - contact i, while the tip is within 1 mm of the boundary: the inward normal n_i
 ///     (40 mm, from the tip into the part) and the normal force as an arrow of length
 ///     f_n,i * force scale ending at the tip (the tip pushes along n_i);
-///   - the phase of each sample (C, P, U, unsupported) and the time, top right.
+///   - the phase of each sample (C, P, U, unsupported) and the time, top right;
+///   - the world axes x and y (100 mm) at the base axis, the start pose dashed grey, and a
+///     legend row at the bottom: a 0.1 m scale bar, a force arrow of a round number of
+///     newtons at the drawing's force scale with each contact's peak f_n, the normal, the
+///     goal and the start.
 /// Every animated attribute has exactly one value per sample, at keyTimes t_k / T
 /// (T the last sample's time), so samples at irregular times (collocation knots) play at
 /// their true times; the animation repeats. The static attribute values are the frame at
@@ -34,13 +38,14 @@ namespace rbsf::tools {
 
 /// \brief What the picture shows besides the motion.
 struct SvgAnimationOptions {
-  std::string title;            ///< first line, top left
-  std::string subtitle;         ///< second line, top left
-  std::optional<Pose> goal;     ///< goal pose of the COM frame, drawn dashed
-  double still_time = 0.0;      ///< [s] the frame of the static attribute values
-  std::string id_prefix = "a";  ///< element ids start with it (unique within a page)
-  int outline_points = 180;     ///< boundary points of the part outline
-  int width_px = 720;           ///< displayed width [px]
+  std::string title;                          ///< first line, top left
+  std::string subtitle;                       ///< second line, top left
+  std::optional<Pose> goal;                   ///< goal pose of the COM frame, drawn dashed
+  double angle_tolerance = 2.0 * M_PI / 180;  ///< [rad] the goal's band in the report's plot
+  double still_time = 0.0;                    ///< [s] the frame of the static attribute values
+  std::string id_prefix = "a";                ///< element ids start with it (unique within a page)
+  int outline_points = 180;                   ///< boundary points of the part outline
+  int width_px = 720;                         ///< displayed width [px]
 };
 
 /// \brief Builds the animated SVG of `frames` (samples in time order, t non-decreasing).
@@ -78,6 +83,7 @@ class SvgAnimation {
   std::string drawPart() const;
   std::string drawContacts() const;
   std::string drawLabels() const;
+  std::string drawLegend(double font) const;
 
   const RbsfModel& model_;
   std::vector<TrajectorySample> frames_;
@@ -85,6 +91,7 @@ class SvgAnimation {
   SvgAnimationOptions options_;
   std::size_t still_ = 0;  ///< frame index of the static values
   double force_scale_ = 0.0;
+  std::vector<double> peak_fn_;                           ///< per contact, over the frames [N]
   double min_x_ = 0, max_x_ = 0, min_y_ = 0, max_y_ = 0;  ///< scene bounds [mm]
 };
 

@@ -1,8 +1,10 @@
 #pragma once
 /// \file
 /// \brief A static SVG line plot of quantities over time, with the time windows of the
-///        motion's phases shaded behind the curves and a cursor that sweeps the time axis
-///        in step with the animation (SMIL, same period), for the HTML report.
+///        motion's phases shaded behind the curves, reference lines and bands (limits, a
+///        goal with its tolerance) and a cursor that sweeps the time axis in step with the
+///        animation (SMIL, same period), for the HTML report. Each curve is drawn over a
+///        white halo, so that every colour stays visible on every phase's shading.
 
 #include <string>
 #include <vector>
@@ -18,6 +20,14 @@ struct PlotSeries {
   std::vector<double> values;
 };
 
+/// \brief A horizontal reference: a dashed line at `lo` (a limit, a goal) or, when hi > lo,
+///        a band from lo to hi (a tolerance), labelled at the right end.
+struct PlotReference {
+  std::string label;
+  std::string color;  ///< "#rrggbb"
+  double lo = 0.0, hi = 0.0;
+};
+
 /// \brief A plot of several series against the sample times.
 class SvgTimePlot {
  public:
@@ -29,6 +39,10 @@ class SvgTimePlot {
   /// \throws std::invalid_argument when the series has the wrong length.
   void add(PlotSeries series);
 
+  /// \brief A reference line or band, kept inside the value axis.
+  /// \throws std::invalid_argument for a non-finite value or hi < lo.
+  void addReference(PlotReference reference);
+
   /// \brief The <svg> element, `width` x `height` pixels. Axes: time [s] and the values in
   ///        `unit`, ticks at 1, 2 or 5 times a power of ten.
   /// \throws std::runtime_error for a NaN or an infinite value.
@@ -39,6 +53,7 @@ class SvgTimePlot {
   std::vector<double> times_;
   std::vector<Phase> phases_;
   std::vector<PlotSeries> series_;
+  std::vector<PlotReference> references_;
 };
 
 /// \brief Tick positions covering [lo, hi]: about `target` of them, spaced 1, 2 or 5 times a
