@@ -11,6 +11,7 @@
 #include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/state_layout.h"
+#include "rbsf/planner/goal.h"
 #include "rbsf/tools/html_report.h"
 #include "rbsf/tools/run_files.h"
 #include "rbsf/tools/svg_animation.h"
@@ -26,6 +27,16 @@ std::string format(const char* fmt, double a, double b = 0, double c = 0) {
 
 std::string poseText(const Pose& p) {
   return format("(%.3f m, %.3f m, %.1f deg)", p.x, p.y, p.phi * 180.0 / M_PI);
+}
+
+/// Where the plan leaves the part, in metres and degrees (the angle modulo a turn).
+std::string endText(const RbsfModel& model, const planner::Plan& plan) {
+  const std::vector<TrajectorySample> f = PlanOutputs::frames(model, plan);
+  const VecQ& q = f.back().q;
+  return format(
+      "%.3g m and %.3g deg from the goal (angle modulo 360 deg)",
+      std::hypot(q[layout::kX] - plan.goal.x, q[layout::kY] - plan.goal.y),
+      std::abs(planner::goalAngleError(q[layout::kPhi], plan.goal.phi, false)) * 180 / M_PI);
 }
 
 }  // namespace
@@ -80,8 +91,7 @@ void PlanOutputs::write(const RbsfModel& model, const planner::Plan& plan) const
           {"start",
            poseText(plan.start) + format(", base %.1f deg", plan.start_theta * 180 / M_PI)},
           {"goal", poseText(plan.goal)},
-          {"goal distance",
-           format("%.3g (tolerance units: 1 = 1 cm or 2 deg)", plan.goal_distance)},
+          {"end", endText(model, plan)},
           {"motion", format("%.3f s in %.0f segments", plan.duration(),
                             static_cast<double>(plan.segments.size()))},
           {"phase sequence", plan.phaseSequence()},

@@ -203,10 +203,11 @@ int run(int argc, char** argv) {
     settings.progress = [&progress_shown, &last_line, tty](const planner::Progress& p) {
       if (!tty && p.elapsed < last_line + 5.0) return;
       if (!tty) last_line = p.elapsed;
-      std::fprintf(stderr,
-                   "%splan-reorientation: %6.1f s  %10llu propagations  best distance %.3g%s",
-                   tty ? "\r" : "", p.elapsed, static_cast<unsigned long long>(p.propagations),
-                   p.best_distance, tty ? " " : "\n");
+      std::fprintf(
+          stderr,
+          "%splan-reorientation: %6.1f s  %10llu propagations  closest %.3g (1 = 1 cm or 2 deg)%s",
+          tty ? "\r" : "", p.elapsed, static_cast<unsigned long long>(p.propagations),
+          p.best_distance, tty ? " " : "\n");
       std::fflush(stderr);
       progress_shown = tty;
     };
