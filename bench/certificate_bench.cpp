@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_stats.h"
 #include "rbsf/bench/problem_suite.h"
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/planner/certificate.h"
@@ -27,11 +28,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double median(std::vector<double> x) {
-  if (x.empty()) return NAN;
-  std::sort(x.begin(), x.end());
-  return x[x.size() / 2];
-}
+using rbsf::bench::median;
 
 struct Row {
   double rate[2][2] = {{NAN, NAN}, {NAN, NAN}};  ///< [planner, refined][part, joint]

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_stats.h"
 #include "rbsf/bench/problem_suite.h"
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/planner/reorientation_pipeline.h"
@@ -23,11 +24,7 @@
 
 namespace {
 
-double median(std::vector<double> x) {
-  if (x.empty()) return NAN;
-  std::sort(x.begin(), x.end());
-  return x[x.size() / 2];
-}
+using rbsf::bench::median;
 
 int run(int argc, char** argv) {
   int seeds = 8, first_seed = 1, trials = 32, knots = 100;

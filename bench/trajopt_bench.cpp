@@ -18,17 +18,14 @@
 #include <string>
 #include <vector>
 
+#include "bench_stats.h"
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
 namespace {
-double median(std::vector<double> x) {
-  if (x.empty()) return NAN;
-  std::sort(x.begin(), x.end());
-  return x[x.size() / 2];
-}
+using rbsf::bench::median;
 
 int run(int argc, char** argv) {
   int seeds = 5, knots = 100, verbose = 0, first_seed = 1;
