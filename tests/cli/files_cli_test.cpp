@@ -233,6 +233,32 @@ TEST(ExitStatus, SigtermStopsAPlanLikeSigintWithStatus143) {
   EXPECT_EQ(plan["status"], "approximate");
 }
 
+TEST(ExitStatus, SigtermStopsASimulationWithStatus143AndNoFile) {
+  const std::string controls = writeTemp("long_hold.csv",
+                                         "duration,tau_theta,tau_1,tau_2,tau_3\n"
+                                         "9,23.544,39.8447,98.0387,156.417\n");
+  const std::string out = tempDir("sim_sigterm") + "/long.csv";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    freopen("/dev/null", "w", stdout);
+    freopen("/dev/null", "w", stderr);
+    const std::string cell = kCells + "default.yaml";
+    execl(kSimulate.c_str(), kSimulate.c_str(), "--cell", cell.c_str(), "--start", "0.1,0.40,0",
+          "--controls", controls.c_str(), "--dt", "1e-5", "--out", out.c_str(),
+          static_cast<char*>(nullptr));
+    _exit(99);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  int raw = 0;
+  ASSERT_EQ(waitpid(pid, &raw, 0), pid);
+  ASSERT_TRUE(WIFEXITED(raw)) << "killed by signal " << (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
+  EXPECT_EQ(WEXITSTATUS(raw), 143);
+  EXPECT_FALSE(isRegular(out));
+  EXPECT_FALSE(isRegular(out + ".tmp." + std::to_string(pid)));  // the streamed file removed
+}
+
 TEST(Progress, WithoutATerminalEachStageIsALine) {
   const Result r = run(kPlan + " --cell " + kCells +
                        "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --trials 2");

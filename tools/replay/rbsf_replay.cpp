@@ -5,8 +5,8 @@
 // trials, it reproduces the plan file's certificate exactly.
 //
 // Exit status: 0 certified; 4 not certified (verdict on stderr); 2 bad input (option,
-// value, file, a plan for another number of fingers); 130 stopped by SIGINT (nothing
-// written); 1 internal error.
+// value, file, a plan for another number of fingers); 130 stopped by SIGINT, 143 by
+// SIGTERM (nothing written); 1 internal error.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -41,7 +41,7 @@ int run(int argc, char** argv) {
       "file's certificate.\n"
       "Exit status: 0 certified; 4 not certified (verdict on stderr); 2 bad input (option, "
       "value, file, a plan for another number of fingers), one message on stderr; 130 "
-      "stopped by SIGINT, nothing written; 1 internal error.");
+      "stopped by SIGINT, 143 by SIGTERM, nothing written; 1 internal error.");
   std::string cell, plan_path, trials_text = "32", seed_text = "1", out, csv;
   bool open_loop = false;
   app.add_option("--cell", cell, "cell YAML file (may differ from the planning cell)")->required();

@@ -3,7 +3,8 @@
 // starts at rest on the fingers placed by the placement rule.
 //
 // Exit status: 0 success; 2 bad input (cell, start pose, controls file, option value,
-// output name), with one message naming the culprit and no output file; 1 internal error.
+// output name, a run beyond the bounds), with one message naming the culprit and no output
+// file; 130 stopped by SIGINT, 143 by SIGTERM (no output file); 1 internal error.
 #include <CLI/CLI.hpp>
 #include <array>
 #include <cmath>
@@ -21,6 +22,7 @@
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/controls_file.h"
+#include "rbsf/tools/interrupt.h"
 #include "rbsf/tools/run_files.h"
 #include "rbsf/tools/svg_animation.h"
 #include "rbsf/tools/tool_main.h"
@@ -147,7 +149,10 @@ int run(int argc, char** argv) {
   app.add_option("--dt", o.dt, "time step [s] (default 0.001)");
   app.add_option("--out", o.out, "write the sampled trajectory (.csv or .json)");
   app.add_option("--svg", o.svg, "write an animated SVG of the motion (a frame every 10 ms)");
-  app.footer(kExitStatusHelp);
+  app.footer(
+      "Exit status: 0 success; 2 bad input (option, value, file, a run beyond the bounds), "
+      "with one message on stderr and no file written; 130 stopped by SIGINT, 143 by SIGTERM "
+      "(no file written); 1 internal error.");
   parseCommandLine(app, argc, argv);
 
   const RbsfModel model(loadCell(o.cell));
@@ -196,6 +201,7 @@ int run(int argc, char** argv) {
   SimState state(q0, VecQ::Zero(m + 4));
   Summary summary;
   double fell_at = -1.0;
+  InterruptFlag::install();              // SIGINT or SIGTERM: stop at the next step, write nothing
   std::vector<TrajectorySample> frames;  // for --svg
   std::vector<VecU> taus;
   for (const auto& seg : schedule.segments()) taus.push_back(seg.tau);
@@ -216,12 +222,17 @@ int run(int argc, char** argv) {
           }
           if ((n + 1) % frame_stride == 0 || n == last) frames.push_back(sample);
         }
+        if (InterruptFlag::raised()) return false;
         if (now.q[layout::kY] < q0[layout::kY] - kFallDepth) {
           fell_at = now.t;  // off the fingers: what follows is a free fall
           return false;
         }
         return true;
       });
+  if (InterruptFlag::raised()) {  // the streamed temporary file goes with the writer
+    std::fprintf(stderr, "rbsf-simulate: stopped at t = %.6g s; nothing written\n", state.t);
+    return InterruptFlag::exitStatus();
+  }
   // Everything is formatted before any file is written; each file is written atomically.
   std::string svg;
   if (!o.svg.empty()) {
