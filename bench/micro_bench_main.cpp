@@ -1,4 +1,4 @@
-// rbsf_micro_bench: the hot paths in one Google Benchmark program (README "Speed",
+// rbsf_micro_bench: the hot paths in one Google Benchmark program (docs/testing.md "Speed",
 // BENCHMARKS.md): dynamics evaluation (dynamics_bench.cpp), simulator step
 // (simulator_bench.cpp), inverse dynamics by phase (phase_control_bench.cpp), one planner
 // propagation (propagation_bench.cpp), one optimiser solve (optimizer_bench.cpp).

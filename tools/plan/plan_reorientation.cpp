@@ -136,7 +136,7 @@ int run(int argc, char** argv) {
                "redrawn every second, elsewhere a line every 5 s of a search)");
   app.add_flag("--no-decisive-modes", o.no_decisive_modes,
                "let contacts change mode anywhere within a held torque (plans a tracking cell "
-               "often cannot repeat; see README)");
+               "often cannot repeat; see docs/tools.md)");
   app.add_flag("--no-optimize", o.no_optimize, "write the planner's plan without optimising it");
   app.add_option("--knots", o.knots, "collocation intervals of the optimiser (default 100)");
   app.add_option("--optimize-time-limit", o.optimize_time_limit,
@@ -145,7 +145,7 @@ int run(int argc, char** argv) {
                  "optimiser iteration limit (default 500)");
   app.add_option("--optimize-tolerance", o.optimize_tolerance,
                  "optimiser convergence tolerance, Ipopt's tol in (0, 1] (default 1e-6; 1e-4 "
-                 "takes about a quarter fewer iterations, see README)");
+                 "takes about a quarter fewer iterations, see docs/optimiser.md)");
   app.add_option("--trials", o.trials,
                  "closed-loop trials of the certificate, 1..100000 (default 32)");
   app.add_option("--trial-seed", o.trial_seed,
