@@ -1,5 +1,5 @@
 /// \file
-/// \brief Cell validation and the YAML cell loader (MODEL.md "Files").
+/// \brief Cell validation and the YAML cell loader (docs/model.md "Files").
 ///
 /// The parser checks structure (known keys, types, finite numbers) and builds a Cell;
 /// every range check lives in Cell::validate(), so a cell from a file and one built in

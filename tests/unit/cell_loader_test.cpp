@@ -1,4 +1,4 @@
-// Cell loading (MODEL.md "Files"): the example cells, every rejected input with a message
+// Cell loading (docs/model.md "Files"): the example cells, every rejected input with a message
 // naming the key path, defaults, and Cell::validate() on cells built in code.
 
 #include <cmath>

@@ -380,7 +380,7 @@ std::string SvgAnimation::render() const {
        "</marker></defs>";
   s += "<rect x=\"" + fixedNumber(vx, 1) + "\" y=\"" + fixedNumber(vy, 1) + "\" width=\"" +
        fixedNumber(vw, 1) + "\" height=\"" + fixedNumber(vh, 1) + "\" fill=\"#ffffff\"/>";
-  // World frame: x right, y up (MODEL.md); SVG's y points down, hence the flip.
+  // World frame: x right, y up (docs/model.md); SVG's y points down, hence the flip.
   // The world axes at the base axis, 100 mm each, drawn last so that nothing hides them.
   const std::string axes =
       "<g class=\"world-axes\" stroke=\"#17202a\" stroke-width=\"3\" marker-end=\"url(#" + p +

@@ -66,7 +66,7 @@ void TrajectoryWriter::open() {
                                   {"v", configLayout(m_, true) + " [m/s, rad/s]"},
                                   {"tau", "tau_theta [N m], tau_1..tau_m [N], held over the step"},
                                   {"f_n", "normal force per contact over the step [N]"},
-                                  {"phase", "C, P, U or unsupported (MODEL.md)"}};
+                                  {"phase", "C, P, U or unsupported (docs/model.md)"}};
   put("{\"columns\": " + columns.dump() + ",\n \"fingers\": " + std::to_string(m_) +
       ",\n \"samples\": [");
 }

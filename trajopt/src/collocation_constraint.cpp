@@ -203,7 +203,7 @@ void CollocationConstraint::knotHessian(const ConstVectorRef& z, int k, int kk, 
       for (int a = 0; a < kWrenchVars; ++a) grad[c6[a] - o] += nb * g[kWrenchVars * b + a];
     }
   }
-  // Bias: P = mu^T Q (MODEL.md "Dynamics"); r contains -Q.
+  // Bias: P = mu^T Q (docs/model.md "Dynamics"); r contains -Q.
   const double g0 = cell.gravity, th = z[oq + kTheta], thd = z[ov + kTheta];
   const double ct = std::cos(th), st = std::sin(th), mt = mu[kTheta], nt = nu[kTheta];
   double P_tt = 0.0, P_tdtd = 0.0;

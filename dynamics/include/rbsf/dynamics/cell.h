@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief A cell: the RBSF mechanism, the object it carries and the friction between them
-///        (MODEL.md "Files"). SI units; angles in radians.
+///        (docs/model.md "Files"). SI units; angles in radians.
 
 #include <memory>
 #include <string>
@@ -67,7 +67,7 @@ struct Cell {
   void validate() const;
 };
 
-/// \brief Read a cell from a YAML file (format in MODEL.md "Files", with the optional
+/// \brief Read a cell from a YAML file (format in docs/model.md "Files", with the optional
 ///        sections `sensing` and `uncertainty` of sensing.h).
 /// \throws InputError for a missing file, malformed YAML, a missing or non-numeric key,
 ///         or an invalid value; the message names the key (e.g. "fingers[1].mass").

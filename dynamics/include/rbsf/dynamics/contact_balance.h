@@ -35,7 +35,7 @@
 /// frictionless tips (2 rows) is not: it balances like an inverted pendulum that only part
 /// feedback can hold.
 ///
-/// Units SI (N, N m, m, rad); frames: world frame B (MODEL.md). Analysis-time code: it
+/// Units SI (N, N m, m, rad); frames: world frame B (docs/model.md). Analysis-time code: it
 /// allocates; one ContactBalancer per thread.
 
 #include <cstdint>

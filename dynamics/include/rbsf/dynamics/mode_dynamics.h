@@ -4,7 +4,7 @@
 ///        feedback law designed around a plan needs (feedback_schedule.h).
 ///
 /// Within a fixed mode (each contact sticking, sliding or separated) the hybrid dynamics
-/// of MODEL.md are an ODE. Touching contacts keep zero normal relative acceleration
+/// of docs/model.md are an ODE. Touching contacts keep zero normal relative acceleration
 /// (eq. 17), sticking ones also zero tangential relative acceleration:
 ///
 ///   M v' = u - Q + N lambda,      W^T v' + h_W = 0,

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief The RBSF mechanism and its object: kinematics (eqs. 1-4, 13-17), mass matrix
-///        and bias (eqs. 5, 6, 18) in the conventions of MODEL.md.
+///        and bias (eqs. 5, 6, 18) in the conventions of docs/model.md.
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/model_data.h"
@@ -48,7 +48,7 @@ class RbsfModel {
   ///        with dJ_i/dt Theta' = -theta'^2 p_i + 2 theta' l_i' S R(theta)(0, 1).
   void velocityProducts(const VecQ& q, const VecQ& v, ModelData& data) const;
 
-  /// \brief M(q) = blockdiag(m_o, m_o, I_o, M_R) (eq. 18, MODEL.md "Dynamics").
+  /// \brief M(q) = blockdiag(m_o, m_o, I_o, M_R) (eq. 18, docs/model.md "Dynamics").
   void massMatrix(const VecQ& q, MatQQ& M) const;
 
   /// \brief x <- M(q)^-1 x, column by column, in O(m) per column: M_R is an arrow matrix
@@ -58,7 +58,7 @@ class RbsfModel {
   void applyMassInverse(const VecQ& q, Eigen::MatrixBase<Derived>& x) const;
 
   /// \brief Q(q, v): gravity on the object, Coriolis, centrifugal and gravity terms of
-  ///        the mechanism (MODEL.md "Dynamics").
+  ///        the mechanism (docs/model.md "Dynamics").
   void bias(const VecQ& q, const VecQ& v, VecQ& Q) const;
 
   /// \brief Generalized input u = (0, 0, 0, tau).

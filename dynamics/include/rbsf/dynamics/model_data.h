@@ -12,7 +12,7 @@
 
 namespace rbsf {
 
-/// \brief Geometry of contact i in the world frame B (MODEL.md "Contact kinematics").
+/// \brief Geometry of contact i in the world frame B (docs/model.md "Contact kinematics").
 struct ContactFrame {
   double xi = 0.0;         ///< boundary parameter of the point closest to the fingertip
   Vec2 tip;                ///< fingertip p_i [m]

@@ -8,7 +8,7 @@
 
 namespace rbsf {
 
-/// \brief Phase by the number s of sticking contacts among the touching ones (MODEL.md).
+/// \brief Phase by the number s of sticking contacts among the touching ones (docs/model.md).
 enum class Phase {
   kC,            ///< s >= 2: omega_o-constrained, every contact sticks
   kP,            ///< s = 1: point-constrained, the object pivots about one contact

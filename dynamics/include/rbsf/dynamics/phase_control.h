@@ -6,7 +6,7 @@
 ///        gets a tau within the cell's limits; the simulator then decides what happens.
 ///
 /// Units: SI throughout (m, rad, N, N m, m/s^2, rad/s^2); frames: world frame B as in
-/// MODEL.md. Contact forces lambda = [F_n; F_t] act along n_i and t_i (ModelData).
+/// docs/model.md. Contact forces lambda = [F_n; F_t] act along n_i and t_i (ModelData).
 ///
 /// **Phase C** (every contact sticks). The constrained velocities are the null space of
 /// N^T, N = [G1 T]; its two directions are the base rotation and a common stroke, so the

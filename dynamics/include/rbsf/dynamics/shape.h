@@ -3,7 +3,7 @@
 /// \brief Smooth closed convex object boundaries c(xi) in the object (COM) frame.
 ///
 /// Every shape is a curve c(xi), xi in [0, 2 pi) (periodic), traversed counter-clockwise
-/// (MODEL.md "Frames and symbols"). From c, c' and c'' the base class derives
+/// (docs/model.md "Frames and symbols"). From c, c' and c'' the base class derives
 /// - unit tangent      t = c' / |c'|
 /// - inward unit normal n = S t            (S = rotation by +90 degrees)
 /// - curvature          kappa = (c' x c'') / |c'|^3  (> 0 for a convex CCW curve)

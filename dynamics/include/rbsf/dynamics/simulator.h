@@ -2,7 +2,7 @@
 /// \file
 /// \brief Hybrid contact simulator: velocity-level time stepping (Stewart-Trinkle /
 ///        Anitescu-Potra) over the full state (q, v) through stick, slip, separation and
-///        renewed contact, with the mechanism's hard limits (MODEL.md; paper 2.2-2.4).
+///        renewed contact, with the mechanism's hard limits (docs/model.md; paper 2.2-2.4).
 ///
 /// One step of size h with tau held over it (semi-implicit Euler):
 ///
@@ -47,7 +47,7 @@
 /// Reports, per contact: mode (separated if inactive, or open in the solution with its
 /// end-of-step gap g + h y_n above contact_tolerance; otherwise sliding if its slip
 /// |y_t| > slip_tolerance, sticking if not), forces f = lambda / h [N]
-/// (the step's average), the gap at the start of the step. Phase (MODEL.md, paper 2.2)
+/// (the step's average), the gap at the start of the step. Phase (docs/model.md, paper 2.2)
 /// from the number s of sticking contacts among the touching ones: C if s >= 2, P if
 /// s = 1, U if s = 0, unsupported when none touches.
 ///

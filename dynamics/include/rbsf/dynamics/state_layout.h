@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief The one place that fixes the order of the configuration, velocity and input
-///        vectors (MODEL.md, "State layout"). Nobody else hard-codes an index.
+///        vectors (docs/model.md, "State layout"). Nobody else hard-codes an index.
 ///
 /// Configuration q in R^(m+4), velocity v = dq/dt (same order, same frame):
 /// | index      | symbol   | meaning                                   | unit |

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief The dynamics of MODEL.md written once for any scalar (double or Eigen's
+/// \brief The dynamics of docs/model.md written once for any scalar (double or Eigen's
 ///        AutoDiffScalar), so the collocation and contact constraints get exact first
 ///        derivatives by forward-mode automatic differentiation. Tested against RbsfModel.
 ///
@@ -30,7 +30,7 @@ template <class S>
 using Vec2T = Eigen::Matrix<S, 2, 1>;
 
 /// \brief Boundary point c(xi) and unit tangent t(xi) in the object frame; the inward
-///        normal is n = S t (MODEL.md).
+///        normal is n = S t (docs/model.md).
 template <class S>
 struct FootPoint {
   Vec2T<S> c, t;
@@ -83,7 +83,7 @@ void footPoint(const Shape& shape, const S& xi, FootPoint<S>& out) {
 }
 
 /// \brief Generalized force of contact i on (x, y, phi, theta, l_i), the non-zero entries
-///        of G1_i f_n + T_i f_t (MODEL.md): (f, c_i x f, -(S p_i) . f, -R(theta)(0,1) . f)
+///        of G1_i f_n + T_i f_t (docs/model.md): (f, c_i x f, -(S p_i) . f, -R(theta)(0,1) . f)
 ///        with f = f_n n_i + f_t t_i at the foot point xi (world frame) [N, N m].
 template <class S>
 void contactWrench(const RbsfModel& model, int i, const S& phi, const S& theta, const S& l,
@@ -112,7 +112,7 @@ Vec2T<S> rotated(const S& ca, const S& sa, const Vec2T<S>& b) {
   return Vec2T<S>(ca * b[0] - sa * b[1], sa * b[0] + ca * b[1]);
 }
 
-/// \brief out = M(q) a (MODEL.md "Dynamics": blockdiag(m_o, m_o, I_o, M_R)).
+/// \brief out = M(q) a (docs/model.md "Dynamics": blockdiag(m_o, m_o, I_o, M_R)).
 ///        q is read from z at offset oq.
 template <class S>
 void massTimes(const Cell& cell, const S* z, int oq, const ConfigVector<S>& a,
@@ -155,7 +155,7 @@ void knotRhs(const RbsfModel& model, const DecisionLayout& dl, const S* z, int o
   const S* xi = &z[o + dl.localXi()];
   const S ct = cos(q[layout::kTheta]), st = sin(q[layout::kTheta]);
   const double g0 = cell.gravity;
-  // -Q (MODEL.md "Dynamics") plus u.
+  // -Q (docs/model.md "Dynamics") plus u.
   r[layout::kX] = S(0.0);
   r[layout::kY] = S(-cell.object.mass * g0);
   r[layout::kPhi] = S(0.0);

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief Velocity-Verlet collocation of the dynamics M(q) dv/dt = r(q, v, tau, f, xi)
-///        (MODEL.md "Dynamics", eqs. 5, 6, 18, 19) on every interval.
+///        (docs/model.md "Dynamics", eqs. 5, 6, 18, 19) on every interval.
 
 #include <vector>
 

@@ -10,7 +10,7 @@
 namespace rbsf::trajopt {
 
 /// \brief For knot k and finger i, with e_i = p_i(q) - (x_o + R(phi) c(xi_i)) [m]
-///        (p_i = R(theta)(r_i, l_i), MODEL.md eqs. 1-2), two rows:
+///        (p_i = R(theta)(r_i, l_i), docs/model.md eqs. 1-2), two rows:
 ///   t_i . e_i = 0     xi_i is the foot point of the tip (closest boundary point);
 ///   n_i . e_i = 0     when the contact is on (stick or slide) in a run touching the knot,
 ///   n_i . e_i <= 0    otherwise (n_i inward: the tip stays outside, no penetration).

@@ -15,7 +15,7 @@
 /// | xi(k)           | m     | xi_k     | boundary parameter of each finger's foot point | -      |
 /// | duration(j)     | 1     | T_j      | duration of phase run j (after the knots)   | s         |
 /// Forces act on the object at the foot point x_o + R(phi) c(xi_i), world frame:
-/// f_i = f_n,i n_i + f_t,i t_i (MODEL.md "Contact kinematics"; n_i inward).
+/// f_i = f_n,i n_i + f_t,i t_i (docs/model.md "Contact kinematics"; n_i inward).
 /// The forces of knot k act at knot k, along its foot points' normals and tangents; the
 /// velocity-Verlet collocation (collocation_constraint.h) sees each knot's force in the
 /// positions, so they cannot alternate from knot to knot unseen.

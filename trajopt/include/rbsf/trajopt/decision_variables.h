@@ -18,7 +18,7 @@ struct OptimizerSettings;
 /// Bounds: tau within the cell's torque and force limits; theta and strokes within their
 /// limits; f_n >= 0 where the contact is on in the interval the knot starts (the last
 /// knot: the last interval; Schedule::forceRole), 0 where off; f_t free where it sticks,
-/// 0 otherwise (mu_k = 0, MODEL.md); q_0 = plan.q0, v_0 = 0
+/// 0 otherwise (mu_k = 0, docs/model.md); q_0 = plan.q0, v_0 = 0
 /// (start at rest); object pose of q_N = the goal (x, y, phi; phi taken within pi of the
 /// plan's final angle), v_N = 0 (at rest at the end); T_j within
 /// [duration_min_scale, duration_max_scale] x the planned duration of run j.

@@ -1,8 +1,8 @@
 #pragma once
 /// \file
 /// \brief Trapezoidal integrals of quadratic forms of knot variables: the effort integral
-///        of tau^T W tau (issue 5's measure of a plan's cost) and a small contact-force
-///        regularisation.
+///        of tau^T W tau (the measure of a plan's cost the optimiser reports) and a small
+///        contact-force regularisation.
 
 #include <string>
 #include <vector>
@@ -52,7 +52,7 @@ class EffortCost final : public KnotQuadraticCost {
 /// \brief weight x the integral of sum_i (f_n,i^2 + f_t,i^2) / W_o^2 (forces per knot,
 ///        decision_layout.h), W_o = m_o max(g0, 1)
 ///        the object's weight [s]. Contact forces of several sticking contacts are
-///        statically indeterminate (MODEL.md, phase C); this picks the least-norm ones and
+///        statically indeterminate (docs/model.md, phase C); this picks the least-norm ones and
 ///        keeps the NLP's Hessian regular in those directions. Small (default 1e-3), so the
 ///        effort dominates.
 class ContactForceCost final : public KnotQuadraticCost {

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief Coulomb cones of the sticking contacts (MODEL.md "Phases", paper eq. 7).
+/// \brief Coulomb cones of the sticking contacts (docs/model.md "Phases", paper eq. 7).
 
 #include "rbsf/trajopt/decision_layout.h"
 #include "rbsf/trajopt/nlp_element.h"

@@ -4,7 +4,7 @@
 ///        contact normals and forces, phase label and time, played by any browser (SMIL
 ///        <animate>, <animateTransform>; no script, no external resource).
 ///
-/// Drawing (world frame B of MODEL.md, x right, y up; SVG user unit = 1 mm; one group
+/// Drawing (world frame B of docs/model.md, x right, y up; SVG user unit = 1 mm; one group
 /// flips y):
 ///   - base: a bar along the base x axis through the axis at the origin, rotated by theta;
 ///   - finger i: its rail from (r_i, 0) to (r_i, stroke_max) in the base frame and its rod
