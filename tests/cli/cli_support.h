@@ -6,9 +6,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <signal.h>
+
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace rbsf::cli_test {
 
@@ -44,6 +50,36 @@ inline std::string writeTemp(const std::string& name, const std::string& text) {
   const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_" + name;
   std::ofstream(path) << text;
   return path;
+}
+
+/// \brief How a run stopped by a signal ended: its pid and exit status (-1 when the signal
+///        killed it instead of the tool exiting).
+struct Stopped {
+  pid_t pid = -1;
+  int status = -1;
+};
+
+/// \brief Start `argv` (stdout and stderr to /dev/null), send it `signal` after `delay`, and
+///        wait for it.
+inline Stopped runAndSignal(const std::vector<std::string>& argv, int signal,
+                            std::chrono::milliseconds delay) {
+  Stopped s;
+  s.pid = fork();
+  if (s.pid < 0) return s;
+  if (s.pid == 0) {
+    std::freopen("/dev/null", "w", stdout);
+    std::freopen("/dev/null", "w", stderr);
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    execv(args[0], args.data());
+    _exit(99);
+  }
+  std::this_thread::sleep_for(delay);
+  kill(s.pid, signal);
+  int raw = 0;
+  if (waitpid(s.pid, &raw, 0) == s.pid && WIFEXITED(raw)) s.status = WEXITSTATUS(raw);
+  return s;
 }
 
 }  // namespace rbsf::cli_test

@@ -213,22 +213,11 @@ TEST(ExitStatus, AnAbsurdGoalAngleIsBadInput) {
 TEST(ExitStatus, SigtermStopsAPlanLikeSigintWithStatus143) {
   const std::string dir = tempDir("sigterm");
   const std::string out = dir + "/p.json";
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    freopen("/dev/null", "w", stdout);
-    const std::string cell = kCells + "default.yaml";
-    execl(kPlan.c_str(), kPlan.c_str(), "--cell", cell.c_str(), "--start", "0.1,0.40,0", "--goal",
-          "0.3,0.40,90deg", "--time-limit", "600", "--planner", "KPIECE1", "--quiet",
-          "--no-optimize", "--out", out.c_str(), static_cast<char*>(nullptr));
-    _exit(99);
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  ASSERT_EQ(kill(pid, SIGTERM), 0);
-  int raw = 0;
-  ASSERT_EQ(waitpid(pid, &raw, 0), pid);
-  ASSERT_TRUE(WIFEXITED(raw)) << "killed by signal " << (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
-  EXPECT_EQ(WEXITSTATUS(raw), 143);
+  const Stopped r = runAndSignal({kPlan, "--cell", kCells + "default.yaml", "--start", "0.1,0.40,0",
+                                  "--goal", "0.3,0.40,90deg", "--time-limit", "600", "--planner",
+                                  "KPIECE1", "--quiet", "--no-optimize", "--out", out},
+                                 SIGTERM, std::chrono::milliseconds(1500));
+  EXPECT_EQ(r.status, 143);
   const auto plan = nlohmann::json::parse(slurp(out));  // the best plan so far, complete
   EXPECT_EQ(plan["status"], "approximate");
 }
@@ -238,23 +227,12 @@ TEST(ExitStatus, SigtermStopsASimulationWithStatus143AndNoFile) {
                                          "duration,tau_theta,tau_1,tau_2,tau_3\n"
                                          "9,23.544,39.8447,98.0387,156.417\n");
   const std::string out = tempDir("sim_sigterm") + "/long.csv";
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    freopen("/dev/null", "w", stdout);
-    freopen("/dev/null", "w", stderr);
-    const std::string cell = kCells + "default.yaml";
-    execl(kSimulate.c_str(), kSimulate.c_str(), "--cell", cell.c_str(), "--start", "0.1,0.40,0",
-          "--controls", controls.c_str(), "--dt", "1e-5", "--out", out.c_str(),
-          static_cast<char*>(nullptr));
-    _exit(99);
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  ASSERT_EQ(kill(pid, SIGTERM), 0);
-  int raw = 0;
-  ASSERT_EQ(waitpid(pid, &raw, 0), pid);
-  ASSERT_TRUE(WIFEXITED(raw)) << "killed by signal " << (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
-  EXPECT_EQ(WEXITSTATUS(raw), 143);
+  const Stopped r =
+      runAndSignal({kSimulate, "--cell", kCells + "default.yaml", "--start", "0.1,0.40,0",
+                    "--controls", controls, "--dt", "1e-5", "--out", out},
+                   SIGTERM, std::chrono::milliseconds(500));
+  EXPECT_EQ(r.status, 143);
+  const pid_t pid = r.pid;
   EXPECT_FALSE(isRegular(out));
   EXPECT_FALSE(isRegular(out + ".tmp." + std::to_string(pid)));  // the streamed file removed
 }

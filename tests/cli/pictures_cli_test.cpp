@@ -111,22 +111,13 @@ TEST(PlanPictures, SameSeedWithReproducibleGivesByteIdenticalFiles) {
 TEST(PlanPictures, SigintWritesTheBestPlanSoFarAndExits130) {
   // A goal the search does not reach within seconds; SIGINT after about a second.
   const std::string out = temp("sigint.json"), svg = temp("sigint.svg");
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    freopen("/dev/null", "w", stdout);
-    const std::string cell = kCellDir + "default.yaml";
-    execl(kPlanExe.c_str(), kPlanExe.c_str(), "--cell", cell.c_str(), "--start", "0.1,0.40,0",
-          "--goal", "0.3,0.40,90deg", "--time-limit", "600", "--planner", "KPIECE1", "--quiet",
-          "--no-optimize", "--out", out.c_str(), "--svg", svg.c_str(), static_cast<char*>(nullptr));
-    _exit(99);
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  ASSERT_EQ(kill(pid, SIGINT), 0);
-  int raw = 0;
-  ASSERT_EQ(waitpid(pid, &raw, 0), pid);
-  ASSERT_TRUE(WIFEXITED(raw)) << "killed by signal " << (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
-  EXPECT_EQ(WEXITSTATUS(raw), 130);
+  const Stopped r =
+      runAndSignal({kPlanExe, "--cell", kCellDir + "default.yaml", "--start", "0.1,0.40,0",
+                    "--goal", "0.3,0.40,90deg", "--time-limit", "600", "--planner", "KPIECE1",
+                    "--quiet", "--no-optimize", "--out", out, "--svg", svg},
+                   SIGINT, std::chrono::milliseconds(1500));
+  EXPECT_EQ(r.status, 130);
+  const pid_t pid = r.pid;
   const auto plan = nlohmann::json::parse(slurp(out));  // complete, valid JSON
   EXPECT_EQ(plan["status"], "approximate");
   EXPECT_GT(plan["goal_distance"].get<double>(), 1.0);
