@@ -201,6 +201,41 @@ TEST(ReorientationController, CancelFromAnotherThreadAndDestructionWhilePlanning
   d.reset();
 }
 
+TEST(ReorientationController, AutoPlansWithSupportsFirstAndTracksWithTheJointLaw) {
+  // kAuto: the support planner's slow plan certifies, is published, and track() runs the
+  // joint law that plan carries (lawSensing), whatever the cell senses.
+  ReorientationController c(kDefaultCell);
+  ReorientationRequest r = smallRequest();
+  r.method = planner::PipelineSettings::Method::kAuto;
+  r.accept_uncertified = false;
+  ASSERT_TRUE(c.plan(r));
+  c.wait();
+  ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
+  EXPECT_EQ(c.outcome(), PlanOutcome::kExact);
+  const planner::Plan plan = c.result().plan;
+  EXPECT_EQ(plan.planner, "support");
+  EXPECT_TRUE(plan.joint_feedback);
+  EXPECT_TRUE(plan.certificate.certified);
+  EXPECT_EQ(plan.certificate.law, "joint feedback");
+  const FeedbackSchedule schedule(c.model(), planner::makeReference(plan),
+                                  planner::lawSensing(c.model().cell().sensing, plan),
+                                  plan.simulator);
+  ControlLaw law(schedule);
+  VecU tau, want;
+  const double h = plan.simulator.time_step;
+  for (long k = 0; k * h <= 1.0; ++k) {
+    const double t = k * h;
+    ReferenceSample at;
+    schedule.reference(t, at);
+    VecU joints(c.model().controlDim());
+    for (int j = 0; j < joints.size(); ++j)
+      joints[j] = at.q[layout::inputToConfig(j)] + 1e-4 * std::cos(0.02 * k + j);
+    ASSERT_TRUE(c.track(t, joints, tau));
+    law.compute(t, joints, want);
+    ASSERT_EQ(tau, want) << "t = " << t;
+  }
+}
+
 TEST(ReorientationController, RefusedProblemFailsWithItsMessage) {
   ReorientationController c(kDefaultCell);
   ReorientationRequest r = smallRequest();
