@@ -3,7 +3,6 @@
 
 #include "rbsf/tools/controls_file.h"
 
-
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/input_file.h"
 #include "rbsf/tools/cli_values.h"
