@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <utility>
 
@@ -138,10 +139,13 @@ void ReorientationController::Impl::run(ReorientationRequest request) {
     pipeline.certificate.feedback = feedback;
     std::string note;
 #ifdef RBSF_CONTROLLER_WITH_TRAJOPT
-    trajopt::OptimizerSettings opt = request.optimizer;
-    opt.cancel = &cancel;
-    const trajopt::PlanOptimizer optimizer(model, opt);
-    if (request.optimize) pipeline.refine = trajopt::refinementStep(optimizer);
+    std::optional<trajopt::PlanOptimizer> optimizer;  // its settings are checked only when used
+    if (request.optimize) {
+      trajopt::OptimizerSettings opt = request.optimizer;
+      opt.cancel = &cancel;
+      optimizer.emplace(model, opt);
+      pipeline.refine = trajopt::refinementStep(*optimizer);
+    }
 #else
     if (request.optimize) note = "optimisation not used: rbsf was built without rbsf::trajopt; ";
 #endif

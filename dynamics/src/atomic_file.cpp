@@ -60,11 +60,13 @@ void moveIntoPlace(const std::string& tmp, const std::string& path, const std::s
   }
 }
 
-void checkWritable(const std::string& path, const std::string& what) {
+std::string directoryOf(const std::string& path) {
   const std::string::size_type slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "."
-                          : slash == 0               ? "/"
-                                                     : path.substr(0, slash);
+  return slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+}
+
+void checkWritable(const std::string& path, const std::string& what) {
+  const std::string dir = directoryOf(path);
   const std::string message = what + ": cannot write '" + path + "': ";
   struct stat st;
   if (path.empty() || path.back() == '/')

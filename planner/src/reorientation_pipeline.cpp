@@ -113,6 +113,13 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     }
     out.attempts.push_back(a);
   };
+  // Record an attempt whose search found nothing.
+  auto nothing = [&](PipelineAttempt& a, const Plan& plan, std::string note) {
+    a.note = std::move(note);
+    a.wall_time = a.search_time;
+    if (s.on_attempt) s.on_attempt(a, plan);
+    out.attempts.push_back(a);
+  };
 
   using Method = PipelineSettings::Method;
   if (s.method != Method::kKinodynamic) {
@@ -134,10 +141,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     if (found && !cancelled()) {
       judge(a, std::move(plan), start, false);
     } else {
-      a.note = cancelled() ? "cancelled" : support.message();
-      a.wall_time = a.search_time;
-      if (s.on_attempt) s.on_attempt(a, plan);
-      out.attempts.push_back(a);
+      nothing(a, plan, cancelled() ? "cancelled" : support.message());
     }
   }
   int kinodynamic_attempts = 0;
@@ -180,10 +184,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     if (found) {
       judge(a, std::move(plan), start, true);
     } else {
-      a.note = "no path";
-      a.wall_time = a.search_time;
-      if (s.on_attempt) s.on_attempt(a, plan);
-      out.attempts.push_back(a);
+      nothing(a, plan, "no path");
     }
   }
 

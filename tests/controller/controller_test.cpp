@@ -34,6 +34,38 @@ ReorientationRequest smallRequest(std::uint32_t seed = 7, double degrees = -15.0
   return r;
 }
 
+/// track() runs the control law of published plan `id`: the same inputs as a law built here
+/// on the plan's own schedule and law (lawSensing: a joint-fed plan gets the joint law
+/// whatever the cell senses), fed the same joints and, every 10th step, the same part
+/// poses, over plan times [0, until].
+void expectTrackRunsThePlansLaw(ReorientationController& c, const planner::Plan& plan,
+                                std::uint64_t id, double until) {
+  const FeedbackSchedule schedule(c.model(), planner::makeReference(plan),
+                                  planner::lawSensing(c.model().cell().sensing, plan),
+                                  plan.simulator);
+  ControlLaw law(schedule);
+  VecU tau, want;
+  const double h = plan.simulator.time_step;
+  for (long k = 0; k * h <= until; ++k) {
+    const double t = k * h;
+    ReferenceSample at;
+    schedule.reference(t, at);
+    VecU joints(c.model().controlDim());
+    for (int j = 0; j < joints.size(); ++j)
+      joints[j] = at.q[layout::inputToConfig(j)] + 1e-4 * std::sin(0.01 * k + j);
+    if (k % 10 == 0) {
+      const Pose pose{at.q[layout::kX] + 1e-4, at.q[layout::kY], at.q[layout::kPhi]};
+      c.addPartPose(t, pose);
+      law.addPartPose(t, pose);
+    }
+    std::uint64_t tracked = 0;
+    ASSERT_TRUE(c.track(t, joints, tau, &tracked));
+    EXPECT_EQ(tracked, id);
+    law.compute(t, joints, want);
+    ASSERT_EQ(tau, want) << "t = " << t;
+  }
+}
+
 /// A request the search cannot finish: tolerances of a micrometre and a microradian.
 ReorientationRequest endlessRequest() {
   ReorientationRequest r = smallRequest(1, -90.0);
@@ -98,31 +130,7 @@ TEST(ReorientationController, PlanCompletesAndSamplingReturnsItsKnots) {
     EXPECT_EQ(ref.phase, seg.phase);
     t0 += seg.duration;
   }
-  // track() runs the control law of the published plan: the same inputs as a law built
-  // here on the plan's own schedule, fed the same joints and part poses.
-  const FeedbackSchedule schedule(c.model(), planner::makeReference(plan), c.model().cell().sensing,
-                                  plan.simulator);
-  ControlLaw law(schedule);
-  VecU tau, want;
-  const double h = plan.simulator.time_step;
-  for (long k = 0; k * h <= plan.duration(); ++k) {
-    const double t = k * h;
-    ReferenceSample at;
-    schedule.reference(t, at);
-    VecU joints(c.model().controlDim());
-    for (int j = 0; j < joints.size(); ++j)
-      joints[j] = at.q[layout::inputToConfig(j)] + 1e-4 * std::sin(0.01 * k + j);
-    if (k % 10 == 0) {
-      const Pose pose{at.q[layout::kX] + 1e-4, at.q[layout::kY], at.q[layout::kPhi]};
-      c.addPartPose(t, pose);
-      law.addPartPose(t, pose);
-    }
-    std::uint64_t tracked = 0;
-    ASSERT_TRUE(c.track(t, joints, tau, &tracked));
-    EXPECT_EQ(tracked, 1u);
-    law.compute(t, joints, want);
-    ASSERT_EQ(tau, want) << "t = " << t;
-  }
+  expectTrackRunsThePlansLaw(c, plan, 1u, plan.duration());
 }
 
 TEST(ReorientationController, SamplingDuringPlanningReturnsThePreviousPlanAndCancelStops) {
@@ -217,23 +225,7 @@ TEST(ReorientationController, AutoPlansWithSupportsFirstAndTracksWithTheJointLaw
   EXPECT_TRUE(plan.joint_feedback);
   EXPECT_TRUE(plan.certificate.certified);
   EXPECT_EQ(plan.certificate.law, "joint feedback");
-  const FeedbackSchedule schedule(c.model(), planner::makeReference(plan),
-                                  planner::lawSensing(c.model().cell().sensing, plan),
-                                  plan.simulator);
-  ControlLaw law(schedule);
-  VecU tau, want;
-  const double h = plan.simulator.time_step;
-  for (long k = 0; k * h <= 1.0; ++k) {
-    const double t = k * h;
-    ReferenceSample at;
-    schedule.reference(t, at);
-    VecU joints(c.model().controlDim());
-    for (int j = 0; j < joints.size(); ++j)
-      joints[j] = at.q[layout::inputToConfig(j)] + 1e-4 * std::cos(0.02 * k + j);
-    ASSERT_TRUE(c.track(t, joints, tau));
-    law.compute(t, joints, want);
-    ASSERT_EQ(tau, want) << "t = " << t;
-  }
+  expectTrackRunsThePlansLaw(c, plan, 1u, 1.0);
 }
 
 TEST(ReorientationController, RefusedProblemFailsWithItsMessage) {

@@ -24,11 +24,8 @@ RunFiles::Entry RunFiles::identify(const std::string& path, const std::string& o
     e.device = static_cast<unsigned long long>(st.st_dev);
     e.inode = static_cast<unsigned long long>(st.st_ino);
   }
-  const std::string::size_type slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "."
-                          : slash == 0               ? "/"
-                                                     : path.substr(0, slash);
-  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const std::string dir = directoryOf(path);
+  const std::string name = path.substr(path.find_last_of('/') + 1);  // npos + 1 == 0
   char buf[PATH_MAX];
   e.resolved = (::realpath(dir.c_str(), buf) != nullptr ? std::string(buf) : dir) + "/" + name;
   return e;

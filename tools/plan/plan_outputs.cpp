@@ -29,17 +29,14 @@ std::string poseText(const Pose& p) {
   return format("(%.3f m, %.3f m, %.1f deg)", p.x, p.y, p.phi * 180.0 / M_PI);
 }
 
-/// Where the plan leaves the part, in metres and degrees (the angle modulo a turn).
-std::string endText(const RbsfModel& model, const planner::Plan& plan) {
-  const std::vector<TrajectorySample> f = PlanOutputs::frames(model, plan);
-  const VecQ& q = f.back().q;
-  return format(
-      "%.3g m and %.3g deg from the goal (angle modulo 360 deg)",
-      std::hypot(q[layout::kX] - plan.goal.x, q[layout::kY] - plan.goal.y),
-      std::abs(planner::goalAngleError(q[layout::kPhi], plan.goal.phi, false)) * 180 / M_PI);
-}
-
 }  // namespace
+
+std::string goalDistanceText(const VecQ& q, const Pose& goal, bool absolute_angle) {
+  return format(
+      "%.3g m and %.3g deg from the goal",
+      std::hypot(q[layout::kX] - goal.x, q[layout::kY] - goal.y),
+      std::abs(planner::goalAngleError(q[layout::kPhi], goal.phi, absolute_angle)) * 180 / M_PI);
+}
 
 PlanOutputs::PlanOutputs(PlanOutputOptions options) : o_(std::move(options)) {
   RunFiles files;  // no output replaces the cell, another output or a special file
@@ -91,7 +88,9 @@ void PlanOutputs::write(const RbsfModel& model, const planner::Plan& plan) const
           {"start",
            poseText(plan.start) + format(", base %.1f deg", plan.start_theta * 180 / M_PI)},
           {"goal", poseText(plan.goal)},
-          {"end", endText(model, plan)},
+          // A plan file does not say how its goal angle was read: modulo a turn here.
+          {"end", goalDistanceText(frames(model, plan).back().q, plan.goal, false) +
+                      " (angle modulo 360 deg)"},
           {"motion", format("%.3f s in %.0f segments", plan.duration(),
                             static_cast<double>(plan.segments.size()))},
           {"phase sequence", plan.phaseSequence()},

@@ -19,6 +19,10 @@
 
 namespace rbsf::tools {
 
+/// \brief How far configuration `q` leaves the part from `goal`: "0.123 m and 35.2 deg from
+///        the goal" (the angle compared as the problem reads it, planner/goal.h).
+std::string goalDistanceText(const VecQ& q, const Pose& goal, bool absolute_angle);
+
 /// \brief Output options of plan-reorientation.
 struct PlanOutputOptions {
   std::string json, csv, svg, report;  ///< paths; empty: not written

@@ -23,9 +23,7 @@
 
 #include "plan_outputs.h"
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/state_layout.h"
 #include "rbsf/planner/certificate.h"
-#include "rbsf/planner/goal.h"
 #include "rbsf/planner/reorientation_pipeline.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
@@ -66,14 +64,8 @@ void printOptimisation(const trajopt::RefineOutcome& r) {
 std::string endText(const planner::Plan& plan, const planner::Problem& problem) {
   if (plan.samples.empty() || !plan.samples.back().q.allFinite()) return "loses the part";
   const planner::PlanSample& end = plan.samples.back();
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "%sends %.3g m and %.3g deg from the goal",
-                end.f_n.maxCoeff() > 0.0 ? "" : "drops the part: it ",
-                std::hypot(end.q[layout::kX] - problem.goal.x, end.q[layout::kY] - problem.goal.y),
-                std::abs(planner::goalAngleError(end.q[layout::kPhi], problem.goal.phi,
-                                                 problem.absolute_angle)) *
-                    180.0 / M_PI);
-  return buf;
+  return std::string(end.f_n.maxCoeff() > 0.0 ? "" : "drops the part: it ") + "ends " +
+         goalDistanceText(end.q, problem.goal, problem.absolute_angle);
 }
 
 /// The certificate of the plan written: verdict, law and worst trial, in metres and degrees.

@@ -14,6 +14,10 @@ namespace rbsf {
 ///        "<path>.tmp.<pid>" (the pid keeps concurrent runs apart).
 std::string temporaryPathFor(const std::string& path);
 
+/// \brief The directory part of `path` as written: "." for a bare name, "/" for a file
+///        in the root (not resolved; links and "." are left as they are).
+std::string directoryOf(const std::string& path);
+
 /// \brief Write `text` to `path` atomically (see the file comment). Only a regular file is
 ///        ever replaced: an existing device, FIFO, directory or symbolic link at `path` is
 ///        refused. On any failure the temporary file is removed and `path` is left as it was.
