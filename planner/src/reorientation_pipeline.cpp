@@ -7,6 +7,8 @@
 #include <utility>
 
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/support_planner.h"
 
 namespace rbsf::planner {
 

@@ -41,8 +41,8 @@
 #include "rbsf/dynamics/reference_trajectory.h"
 #include "rbsf/planner/certificate.h"
 #include "rbsf/planner/plan.h"
+#include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/reorientation_pipeline.h"
-#include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
 namespace rbsf::controller {

@@ -21,22 +21,10 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "rbsf/planner/phase_targets.h"
+#include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/state_space.h"
 
 namespace rbsf::planner {
-
-/// \brief Probabilities and target ranges of PhaseControlSampler.
-struct SamplerSettings {
-  double p_stick = 0.5;           ///< weight of phase C targets
-  double p_slide = 0.5;           ///< weight of phase U targets
-  double p_random = 0.05;         ///< probability of a uniformly random tau
-  double max_base_accel = 6.0;    ///< [rad/s^2]
-  double max_stroke_accel = 2.0;  ///< [m/s^2]
-  double max_omega_dot = 30.0;    ///< [rad/s^2]
-  double damping = 3.0;           ///< [1/s]
-  double centering = 20.0;        ///< [1/s^2] pull of the COM toward home_x in phase U
-  double home_x = 0.0;            ///< [m]
-};
 
 /// \brief OMPL ControlSampler choosing phase targets.
 class PhaseControlSampler : public ompl::control::ControlSampler {

@@ -27,16 +27,10 @@
 #include <ompl/control/StatePropagator.h>
 
 #include "rbsf/dynamics/simulator.h"
+#include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/state_space.h"
 
 namespace rbsf::planner {
-
-/// \brief The decisive-modes rule of the file comment.
-struct DecisiveModes {
-  bool enabled = true;       ///< false: every propagation step counts
-  int settle_steps = 2;      ///< simulator steps in which a propagation step may switch modes
-  double cone_margin = 0.9;  ///< sticking contacts keep |f_t| <= cone_margin mu_s f_n after
-};
 
 /// \brief OMPL StatePropagator stepping the simulator.
 class SimPropagator : public ompl::control::StatePropagator {

@@ -26,7 +26,7 @@
 
 #include "rbsf/planner/certificate.h"
 #include "rbsf/planner/plan.h"
-#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/support_planner.h"
 
 namespace rbsf::planner {

@@ -29,58 +29,13 @@
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/planner/control_sampler.h"
 #include "rbsf/planner/plan.h"
+#include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/planner_setup.h"
 #include "rbsf/planner/propagator.h"
 #include "rbsf/planner/state_space.h"
 #include "rbsf/planner/validity.h"
 
 namespace rbsf::planner {
-
-/// \brief Progress during the search (reported about once per second).
-struct Progress {
-  double elapsed = 0.0;  ///< [s]
-  std::uint64_t propagations = 0;
-  double best_distance = 0.0;  ///< goal distance in tolerance units (<= 1: reached)
-};
-
-/// \brief Everything the planner can be told.
-struct PlannerSettings {
-  std::string planner = "KPIECE1";
-  double time_limit = 30.0;  ///< [s]
-  std::uint32_t seed = 1;
-  double position_tolerance = 0.01;           ///< [m]
-  double angle_tolerance = 2.0 * M_PI / 180;  ///< [rad]
-  SimulatorSettings simulator;
-  int steps_per_control = 20;    ///< simulator steps per propagation step
-  int min_control_steps = 1;     ///< propagation steps per control, least
-  int max_control_steps = 10;    ///< and most
-  int sample_steps = 10;         ///< simulator steps between plan samples
-  double projection_cell = 0.1;  ///< [rad], both projection axes
-  double goal_bias = 0.05;
-  SpeedBounds speed;
-  ValiditySettings validity;
-  DecisiveModes decisive_modes;  ///< propagation steps a tracking cell repeats (propagator.h)
-  SamplerSettings sampler;
-  std::function<void(const Progress&)> progress;  ///< called about once per second
-  /// \brief When set and it becomes true (another thread, a signal handler), the search
-  ///        stops at its next check and solve() returns the best plan found so far.
-  const std::atomic<bool>* cancel = nullptr;
-};
-
-/// \brief The problem: start pose (fingers placed at start_theta, part at rest) and goal.
-struct Problem {
-  Pose start;
-  double start_theta = 0.0;
-  Pose goal;
-  /// \brief false: the goal angle is a pose, reached whichever way the part turns (phi
-  ///        compared modulo 2 pi, so 270 deg is -90 deg). true: the goal angle is the
-  ///        part's total turn from phi = 0 (phi is never wrapped along a motion), so a
-  ///        start at 0 and a goal at -270 deg asks for three quarters of a clockwise turn.
-  bool absolute_angle = false;
-};
-
-/// \brief Planner names accepted by PlannerSettings::planner.
-const std::vector<std::string>& plannerNames();
 
 /// \brief The planner for one cell.
 class ReorientationPlanner {

@@ -21,14 +21,9 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include "rbsf/dynamics/simulator.h"
+#include "rbsf/planner/planner_settings.h"
 
 namespace rbsf::planner {
-
-/// \brief Speed bounds of the state space (also checked by the validity checker).
-struct SpeedBounds {
-  double linear = 2.0;   ///< object |dx/dt|, |dy/dt| and stroke rates [m/s]
-  double angular = 6.0;  ///< |dphi/dt|, |dtheta/dt| [rad/s]
-};
 
 /// \brief RealVectorStateSpace over (q, v) whose states also hold a SimState.
 class SimStateSpace : public ompl::base::RealVectorStateSpace {

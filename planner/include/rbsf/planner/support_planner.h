@@ -14,7 +14,7 @@
 
 #include "rbsf/dynamics/feedback_schedule.h"
 #include "rbsf/planner/plan.h"
-#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/support_trajectory.h"
 
 namespace rbsf::planner {

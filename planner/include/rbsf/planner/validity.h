@@ -15,17 +15,10 @@
 #include <ompl/base/StateValidityChecker.h>
 
 #include "rbsf/dynamics/model.h"
+#include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/state_space.h"
 
 namespace rbsf::planner {
-
-/// \brief Thresholds of SupportValidityChecker.
-struct ValiditySettings {
-  int min_touching = 2;                 ///< contacts that must touch
-  double touch_distance = 1e-3;         ///< gap counted as touching [m]
-  double penetration_tolerance = 2e-3;  ///< largest allowed -gap [m]
-  double min_height = 0.05;             ///< lowest COM y [m]
-};
 
 /// \brief Validity checker of the planner (single-threaded: holds a ModelData).
 class SupportValidityChecker : public ompl::base::StateValidityChecker {
