@@ -32,7 +32,7 @@ struct OptimizerSettings;
 /// boundary points of the tips (unwrapped along the plan); then clipped into the bounds (a force
 /// where the schedule has the contact off becomes 0). Against forces sampled at the knots with f_t
 /// = 0 (before 2026-11-21), the median of the object's velocity defects at the guess was 4-40 times
-/// smaller on the default problems (measured under the trapezoidal rule, BENCHMARKS.md).
+/// smaller on the default problems (measured under the trapezoidal rule, docs/optimiser.md).
 class DecisionVariables {
  public:
   DecisionVariables(const RbsfModel& model, const DecisionLayout& layout, const Schedule& schedule,
