@@ -1,10 +1,11 @@
 #pragma once
 /// \file
-/// \brief Phase-targeted inverse dynamics used by the control sampler: the tau that makes a
-///        chosen phase hold with chosen mechanism or object accelerations, clipped to the
-///        cell's limits. (The planner's own compact version. rbsf/dynamics/phase_control.h
-///        is the thorough one, with cones and force margins, but it needs every finger
-///        touching, which the planner's states often are not.)
+/// \brief Phase-targeted inverse dynamics, the project's one: the tau that makes a chosen
+///        phase hold with chosen mechanism or object accelerations, clipped to the cell's
+///        limits, for the control sampler (control_sampler.h: damped targets, the part
+///        pulled back over the fingers). Fingers that do not touch are allowed: the planner's
+///        states often have some lifted. Friction cones are not imposed here: the
+///        propagator's decisive-modes rule refuses steps whose contacts leave their modes.
 ///
 /// Phase C target (every touching contact sticks, paper 2.2): base acceleration alpha and
 /// common stroke acceleration s. The object then moves rigidly with the base frame shifted
