@@ -221,7 +221,18 @@ LcpStatus solveLcp(const MatCC& A, const VecC& p, VecC& z, VecC& w) {
 
 // =======================================================================================
 
-bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) {
+namespace {
+
+/// Lawson-Hanson NNLS on any column-capacity: the work vectors and the passive columns'
+/// copy take E's compile-time maximum sizes, so a fixed-capacity E (Mat3C) keeps them on
+/// the stack, and MatrixXd on the heap.
+template <class MatE, class VecF, class VecX>
+bool nnls(const MatE& E, const VecF& f, VecX& x) {
+  constexpr int kMaxCols = MatE::MaxColsAtCompileTime;
+  using Work = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxCols, 1>;
+  using Flags = Eigen::Matrix<Index, Eigen::Dynamic, 1, 0, kMaxCols, 1>;
+  using Columns = Eigen::Matrix<double, MatE::RowsAtCompileTime, Eigen::Dynamic, 0,
+                                MatE::MaxRowsAtCompileTime, kMaxCols>;
   const Index m = E.rows();
   const Index n = E.cols();
   require(f.size() == m, "solveNnls: f.size() must equal E.rows()");
@@ -233,31 +244,31 @@ bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) {
   const double tol = 10.0 * kEps * static_cast<double>(std::max(m, n)) *
                      E.cwiseAbs().colwise().sum().maxCoeff() * f.norm();
 
-  std::vector<char> passive(static_cast<std::size_t>(n), 0);
-  std::vector<Index> cols;
-  VectorXd zP;
-  MatrixXd Ep;
+  Flags passive = Flags::Zero(n);
+  Flags cols(n);
+  Work zP;
+  Columns Ep;
 
   // Least squares on the passive columns; returns the full-length solution in `out`.
-  auto solvePassive = [&](VectorXd& out) {
-    cols.clear();
+  auto solvePassive = [&](Work& out) {
+    Index k = 0;
     for (Index j = 0; j < n; ++j) {
-      if (passive[static_cast<std::size_t>(j)]) cols.push_back(j);
+      if (passive(j)) cols(k++) = j;
     }
-    Ep.resize(m, static_cast<Index>(cols.size()));
-    for (std::size_t c = 0; c < cols.size(); ++c) Ep.col(static_cast<Index>(c)) = E.col(cols[c]);
+    Ep.resize(m, k);
+    for (Index c = 0; c < k; ++c) Ep.col(c) = E.col(cols(c));
     zP = Ep.colPivHouseholderQr().solve(f);
     out.setZero(n);
-    for (std::size_t c = 0; c < cols.size(); ++c) out(cols[c]) = zP(static_cast<Index>(c));
+    for (Index c = 0; c < k; ++c) out(cols(c)) = zP(c);
   };
 
   // Lawson & Hanson's 3n on the outer iterations (each inner step removes a passive
   // variable, so inner steps never outnumber outer ones), plus slack for rejected trials.
   const long limit = 3 * n + 30;
   long iterations = 0;
-  VectorXd w(n);
-  VectorXd z(n);
-  std::vector<char> rejected(static_cast<std::size_t>(n), 0);
+  Work w(n);
+  Work z(n);
+  Flags rejected = Flags::Zero(n);
 
   for (;;) {
     w.noalias() = E.transpose() * (f - E * x);
@@ -265,8 +276,7 @@ bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) {
     Index t = -1;
     double best = tol;
     for (Index j = 0; j < n; ++j) {
-      const std::size_t sj = static_cast<std::size_t>(j);
-      if (!passive[sj] && !rejected[sj] && w(j) > best) {
+      if (!passive(j) && !rejected(j) && w(j) > best) {
         best = w(j);
         t = j;
       }
@@ -274,24 +284,24 @@ bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) {
     if (t < 0) return true;
     if (++iterations > limit) return false;
 
-    passive[static_cast<std::size_t>(t)] = 1;
+    passive(t) = 1;
     solvePassive(z);
     if (z(t) <= 0.0) {
       // Rounding made the dual look positive although the column cannot enter with a
       // positive value (L&H ch. 23, the test after step 6): reject it until x changes,
       // otherwise the same column would be chosen forever.
-      passive[static_cast<std::size_t>(t)] = 0;
-      rejected[static_cast<std::size_t>(t)] = 1;
+      passive(t) = 0;
+      rejected(t) = 1;
       continue;
     }
-    std::fill(rejected.begin(), rejected.end(), 0);
+    rejected.setZero();
 
     // Inner loop: step back along x -> z until every passive variable is positive.
     for (;;) {
       double alpha = kInf;
       Index hit = -1;
       for (Index j = 0; j < n; ++j) {
-        if (passive[static_cast<std::size_t>(j)] && z(j) <= 0.0) {
+        if (passive(j) && z(j) <= 0.0) {
           const double a = x(j) / (x(j) - z(j));
           if (a < alpha) {
             alpha = a;
@@ -308,9 +318,8 @@ bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) {
       // reached zero up to rounding.
       const double xTol = 10.0 * kEps * x.cwiseAbs().maxCoeff();
       for (Index j = 0; j < n; ++j) {
-        const std::size_t sj = static_cast<std::size_t>(j);
-        if (passive[sj] && (j == hit || x(j) <= xTol)) {
-          passive[sj] = 0;
+        if (passive(j) && (j == hit || x(j) <= xTol)) {
+          passive(j) = 0;
           x(j) = 0.0;
         }
       }
@@ -318,6 +327,12 @@ bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) {
     }
   }
 }
+
+}  // namespace
+
+bool solveNnls(const MatrixXd& E, const VectorXd& f, VectorXd& x) { return nnls(E, f, x); }
+
+bool solveNnls(const Mat3C& E, const Eigen::Vector3d& f, VecC& x) { return nnls(E, f, x); }
 
 // =======================================================================================
 

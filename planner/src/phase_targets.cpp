@@ -7,6 +7,34 @@
 #include "rbsf/dynamics/state_layout.h"
 
 namespace rbsf::planner {
+namespace {
+
+/// The least-norm solution of G x = w from G's complete orthogonal decomposition: the steps
+/// of Eigen's CompleteOrthogonalDecomposition::solve (Eigen 3.4), whose Z application takes
+/// a heap work vector; here that vector is on the stack, and the arithmetic is the same.
+void leastNormSolve(const Eigen::CompleteOrthogonalDecomposition<Mat3R>& cod,
+                    const Eigen::Vector3d& w, VecR& x) {
+  const Eigen::Index rank = cod.rank(), cols = cod.cols();
+  x.setZero(cols);
+  if (rank == 0) return;
+  Eigen::Vector3d c = w;  // c = Q^* w
+  c.applyOnTheLeft(cod.matrixQ().setLength(rank).adjoint());
+  x.topRows(rank) =
+      cod.matrixT().topLeftCorner(rank, rank).triangularView<Eigen::Upper>().solve(c.topRows(rank));
+  if (rank < cols) {  // x = Z^* [z; 0]
+    VecR temp(cols);
+    for (Eigen::Index k = 0; k < rank; ++k) {
+      if (k != rank - 1) x.row(k).swap(x.row(rank - 1));
+      x.middleRows(rank - 1, cols - rank + 1)
+          .applyHouseholderOnTheLeft(cod.matrixQTZ().row(k).tail(cols - rank).adjoint(),
+                                     cod.zCoeffs()(k), &temp(0));
+      if (k != rank - 1) x.row(k).swap(x.row(rank - 1));
+    }
+  }
+  x = cod.colsPermutation() * x;  // undo the column pivoting
+}
+
+}  // namespace
 
 PhaseTargeting::PhaseTargeting(const RbsfModel& model, double touch_distance)
     : model_(model),
@@ -66,13 +94,15 @@ bool PhaseTargeting::stickTau(const VecQ& q, const VecQ& v, const StickTarget& t
   const Cell& cell = model_.cell();
   const Eigen::Vector3d w(cell.object.mass * a.x(), cell.object.mass * (a.y() + cell.gravity),
                           cell.object.inertia * target.base_accel);
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(3, 2 * m);
+  Mat3R G = Mat3R::Zero(3, 2 * m);
   for (int i = 0; i < m; ++i) {
     if (data_.contacts[i].gap > touch_distance_) continue;
     G.col(2 * i) = data_.G1.col(i).head<3>();
     G.col(2 * i + 1) = data_.T.col(i).head<3>();
   }
-  const Eigen::VectorXd lambda = G.completeOrthogonalDecomposition().solve(w);
+  const Eigen::CompleteOrthogonalDecomposition<Mat3R> cod(G);
+  VecR lambda;
+  leastNormSolve(cod, w, lambda);
   VecQ force = VecQ::Zero(m + 4);
   for (int i = 0; i < m; ++i)
     force += data_.G1.col(i) * lambda[2 * i] + data_.T.col(i) * lambda[2 * i + 1];
@@ -87,7 +117,7 @@ bool PhaseTargeting::slideTau(const VecQ& q, const VecQ& v, const SlideTarget& t
   const Cell& cell = model_.cell();
   // Object rows scaled to accelerations (row phi by I_o / m_o) so NNLS weighs them alike.
   const double mo = cell.object.mass, io = cell.object.inertia;
-  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(3, m);
+  Mat3C E = Mat3C::Zero(3, m);
   for (int i = 0; i < m; ++i) {
     if (data_.contacts[i].gap > touch_distance_) continue;
     E(0, i) = data_.G1(layout::kX, i) / mo;
@@ -95,7 +125,7 @@ bool PhaseTargeting::slideTau(const VecQ& q, const VecQ& v, const SlideTarget& t
     E(2, i) = data_.G1(layout::kPhi, i) / io;
   }
   const Eigen::Vector3d f(target.accel_x, target.accel_y + cell.gravity, target.omega_dot);
-  Eigen::VectorXd fn(m);
+  VecC fn(m);
   if (!solveNnls(E, f, fn)) return false;
   const Eigen::Vector3d acc = E * fn - Eigen::Vector3d(0.0, cell.gravity, 0.0);
   VecQ vdot = VecQ::Zero(m + 4);

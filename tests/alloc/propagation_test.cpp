@@ -53,5 +53,30 @@ TEST(NoAllocationPlanner, PropagateChecksEveryStepWithoutAllocating) {
   si->freeState(state);
 }
 
+TEST(NoAllocationPlanner, SamplerDrawsControlsWithoutAllocating) {
+  // The control sampler runs at every tree extension, before the propagation: its phase
+  // targets' inverse dynamics (phase_targets.h) must not touch the heap either.
+  if (!test::mallocCountingAvailable()) GTEST_SKIP() << "malloc not countable in this build";
+  const RbsfModel model(loadCell(std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml"));
+  const planner::ReorientationPlanner rp(model, planner::PlannerSettings{});
+  planner::Problem problem;
+  problem.start = {0.1, 0.40, 0.0};
+  problem.goal = {0.1, 0.40, -0.5};
+  const planner::PlannerSetup setup = rp.setup(problem);
+  setup.simple_setup->setup();
+  const auto si = setup.simple_setup->getSpaceInformation();
+  const int m = model.numFingers();
+  ompl::base::State* state = si->allocState();
+  ompl::control::Control* control = si->allocControl();
+  setup.space->fromSim(SimState(setup.q0, VecQ::Zero(m + 4)), state);
+  const ompl::control::ControlSamplerPtr sampler = si->allocControlSampler();
+  sampler->sample(control, state);  // warm-up
+  test::MallocCounter counter;
+  for (int k = 0; k < 200; ++k) sampler->sample(control, state);
+  EXPECT_EQ(counter.count(), 0);
+  si->freeControl(control);
+  si->freeState(state);
+}
+
 }  // namespace
 }  // namespace rbsf

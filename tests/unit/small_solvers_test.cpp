@@ -281,6 +281,25 @@ TEST(SolveNnls, RandomMatchesBruteForceAndKkt) {
   EXPECT_GT(withActive, 100);  // the bound constraints did matter
 }
 
+TEST(SolveNnls, FixedCapacityThreeRowsGivesTheSameBits) {
+  // The allocation-free overload (3 rows, up to kMaxFingers columns) runs the same
+  // algorithm on stack storage: its answer is the dynamic one, bit for bit.
+  for (unsigned seed = 0; seed < 200; ++seed) {
+    std::mt19937 rng(seed + 777);
+    const Index n = 1 + static_cast<Index>(seed % kMaxFingers);
+    const MatrixXd E = randomMatrix(rng, 3, n);
+    const VectorXd f = randomVector(rng, 3) * 3.0;
+    VectorXd x;
+    ASSERT_TRUE(solveNnls(E, f, x));
+    const Mat3C Es = E;
+    const Eigen::Vector3d fs = f;
+    VecC xs;
+    ASSERT_TRUE(solveNnls(Es, fs, xs));
+    ASSERT_EQ(xs.size(), n);
+    for (Index j = 0; j < n; ++j) EXPECT_EQ(xs(j), x(j)) << "seed=" << seed << " j=" << j;
+  }
+}
+
 TEST(SolveNnls, EdgeCases) {
   VectorXd x;
   // f = 0: x = 0.

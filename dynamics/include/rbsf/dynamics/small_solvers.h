@@ -31,6 +31,10 @@ LcpStatus solveLcp(const MatCC& A, const VecC& p, VecC& z, VecC& w);
 ///         f.size() != E.rows().
 bool solveNnls(const Eigen::MatrixXd& E, const Eigen::VectorXd& f, Eigen::VectorXd& x);
 
+/// \brief The same for three equations on up to kMaxFingers unknowns (a part's force and
+///        moment balance over its contacts), allocation-free.
+bool solveNnls(const Mat3C& E, const Eigen::Vector3d& f, VecC& x);
+
 /// \brief Result of leastNormInPolyhedron() and solveLp().
 enum class SolveStatus { kOptimal, kInfeasible, kUnbounded };
 

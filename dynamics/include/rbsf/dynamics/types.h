@@ -39,6 +39,10 @@ using MatQC = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConfi
 using MatQR = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConfig, kMaxRows>;
 /// \brief m x m matrix (the Delassus matrix A of eq. 21).
 using MatCC = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxFingers, kMaxFingers>;
+/// \brief 3 x m matrix (a part's three balance rows over its contacts).
+using Mat3C = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxFingers>;
+/// \brief 3 x 2m matrix (the same rows over normal and tangential contact forces).
+using Mat3R = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxRows>;
 /// \brief 2m x 2m matrix.
 using MatRR = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows>;
 
