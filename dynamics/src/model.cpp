@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include "rbsf/dynamics/equations.h"
 #include "rbsf/dynamics/errors.h"
 
 namespace rbsf {
@@ -57,17 +58,23 @@ void RbsfModel::updateContacts(const VecQ& q, ModelData& data) const {
     c.tangent = R_phi * bp.tangent;
     c.curvature = bp.curvature;
 
-    const Vec2 d_theta = perp(c.tip);
     // The gap grows when the object moves along n (the tip recedes inside the normal
     // direction) and shrinks when the tip moves along n: G1_i = [G_i n_i; -J_i^T n_i].
-    data.G1.col(i).head<2>() = c.normal;
-    data.G1(kPhi, i) = cross(c.lever, c.normal);
-    data.G1(kTheta, i) = -d_theta.dot(c.normal);
-    data.G1(stroke(i), i) = -d_stroke.dot(c.normal);
-    data.T.col(i).head<2>() = c.tangent;
-    data.T(kPhi, i) = cross(c.lever, c.tangent);
-    data.T(kTheta, i) = -d_theta.dot(c.tangent);
-    data.T(stroke(i), i) = -d_stroke.dot(c.tangent);
+    double col[5];
+    equations::contactColumn<double>(c.lever.x(), c.lever.y(), c.tip.x(), c.tip.y(), d_stroke.x(),
+                                     d_stroke.y(), c.normal.x(), c.normal.y(), col);
+    data.G1(kX, i) = col[0];
+    data.G1(kY, i) = col[1];
+    data.G1(kPhi, i) = col[2];
+    data.G1(kTheta, i) = col[3];
+    data.G1(stroke(i), i) = col[4];
+    equations::contactColumn<double>(c.lever.x(), c.lever.y(), c.tip.x(), c.tip.y(), d_stroke.x(),
+                                     d_stroke.y(), c.tangent.x(), c.tangent.y(), col);
+    data.T(kX, i) = col[0];
+    data.T(kY, i) = col[1];
+    data.T(kPhi, i) = col[2];
+    data.T(kTheta, i) = col[3];
+    data.T(stroke(i), i) = col[4];
   }
 }
 
@@ -99,31 +106,17 @@ void RbsfModel::massMatrix(const VecQ& q, MatQQ& M) const {
   M(kX, kX) = cell_.object.mass;
   M(kY, kY) = cell_.object.mass;
   M(kPhi, kPhi) = cell_.object.inertia;
-  double base = cell_.base.inertia;
   for (int i = 0; i < m_; ++i) {
     const FingerParams& f = cell_.fingers[i];
-    const double L = q[stroke(i)] + f.com_offset;
-    base += f.inertia + f.mass * (f.r * f.r + L * L);
     M(kTheta, stroke(i)) = M(stroke(i), kTheta) = f.mass * f.r;
     M(stroke(i), stroke(i)) = f.mass;
   }
-  M(kTheta, kTheta) = base;
+  M(kTheta, kTheta) = equations::baseInertia<double>(cell_, q);
 }
 
 void RbsfModel::bias(const VecQ& q, const VecQ& v, VecQ& Q) const {
-  const double g0 = cell_.gravity;
-  const double ct = std::cos(q[kTheta]), st = std::sin(q[kTheta]);
-  const double theta_dot = v[kTheta];
-  Q.setZero(m_ + 4);
-  Q[kY] = cell_.object.mass * g0;
-  double q_theta = 0.0;
-  for (int i = 0; i < m_; ++i) {
-    const FingerParams& f = cell_.fingers[i];
-    const double L = q[stroke(i)] + f.com_offset;
-    q_theta += 2.0 * f.mass * L * v[stroke(i)] * theta_dot + f.mass * g0 * (f.r * ct - L * st);
-    Q[stroke(i)] = -f.mass * L * theta_dot * theta_dot + f.mass * g0 * ct;
-  }
-  Q[kTheta] = q_theta;
+  Q.resize(m_ + 4);
+  equations::bias<double>(cell_, q, v, Q);
 }
 
 void RbsfModel::freeAcceleration(const VecQ& q, const VecU& tau, const VecQ& Q, VecQ& a) const {

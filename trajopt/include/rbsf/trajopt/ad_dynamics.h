@@ -1,8 +1,11 @@
 #pragma once
 /// \file
-/// \brief The dynamics of docs/model.md written once for any scalar (double or Eigen's
-///        AutoDiffScalar), so the collocation and contact constraints get exact first
-///        derivatives by forward-mode automatic differentiation. Tested against RbsfModel.
+/// \brief The dynamics of docs/model.md at the optimiser's knots, for any scalar (double or
+///        Eigen's AutoDiffScalar), so the collocation and contact constraints get exact
+///        derivatives by forward-mode automatic differentiation. The terms themselves are
+///        RbsfModel's (dynamics/equations.h); here they are evaluated at the decision
+///        variables: the contact point is the boundary point of the variable xi_i, not the
+///        closest point.
 ///
 /// Derivative vectors have a fixed maximum size (kMaxLocal, enough for two knots of a
 /// 12-finger cell plus a duration), so AutoDiff arithmetic never touches the heap.
@@ -12,6 +15,7 @@
 #include <Eigen/Core>
 #include <unsupported/Eigen/AutoDiff>
 
+#include "rbsf/dynamics/equations.h"
 #include "rbsf/dynamics/model.h"
 #include "rbsf/trajopt/decision_layout.h"
 
@@ -82,9 +86,15 @@ void footPoint(const Shape& shape, const S& xi, FootPoint<S>& out) {
   }
 }
 
+/// \brief Rotation R(a) b for any scalar.
+template <class S>
+Vec2T<S> rotated(const S& ca, const S& sa, const Vec2T<S>& b) {
+  return Vec2T<S>(ca * b[0] - sa * b[1], sa * b[0] + ca * b[1]);
+}
+
 /// \brief Generalized force of contact i on (x, y, phi, theta, l_i), the non-zero entries
-///        of G1_i f_n + T_i f_t (docs/model.md): (f, c_i x f, -(S p_i) . f, -R(theta)(0,1) . f)
-///        with f = f_n n_i + f_t t_i at the foot point xi (world frame) [N, N m].
+///        of G1_i f_n + T_i f_t (docs/model.md): equations::contactColumn for the world force
+///        f = f_n n_i + f_t t_i at the foot point of xi [N, N m].
 template <class S>
 void contactWrench(const RbsfModel& model, int i, const S& phi, const S& theta, const S& l,
                    const S& fn, const S& ft, const S& xi, S* w) {
@@ -93,27 +103,20 @@ void contactWrench(const RbsfModel& model, int i, const S& phi, const S& theta, 
   FootPoint<S> foot;
   footPoint(model.shape(), xi, foot);
   const S cp = cos(phi), sp = sin(phi), ct = cos(theta), st = sin(theta);
-  // Force in the object frame (n = S t), then world; c x f is rotation invariant.
+  // Force in the object frame (n = S t), then world; the lever R(phi) c; the tip
+  // R(theta)(r_i, l_i); the finger's axis R(theta)(0, 1).
   const S flx = fn * (-foot.t[1]) + ft * foot.t[0];
   const S fly = fn * foot.t[0] + ft * foot.t[1];
   const S fx = cp * flx - sp * fly, fy = sp * flx + cp * fly;
-  w[0] = fx;
-  w[1] = fy;
-  w[2] = foot.c[0] * fly - foot.c[1] * flx;
+  const S lx = cp * foot.c[0] - sp * foot.c[1], ly = sp * foot.c[0] + cp * foot.c[1];
   const double r = model.cell().fingers[i].r;
-  const S px = ct * r - st * l, py = st * r + ct * l;  // p_i = R(theta)(r_i, l_i)
-  w[3] = -(px * fy - py * fx);                         // -(S p_i) . f
-  w[4] = st * fx - ct * fy;                            // -R(theta)(0, 1) . f
+  const S px = ct * r - st * l, py = st * r + ct * l;
+  const S ax = -st;
+  equations::contactColumn<S>(lx, ly, px, py, ax, ct, fx, fy, w);
 }
 
-/// \brief Rotation R(a) b for any scalar.
-template <class S>
-Vec2T<S> rotated(const S& ca, const S& sa, const Vec2T<S>& b) {
-  return Vec2T<S>(ca * b[0] - sa * b[1], sa * b[0] + ca * b[1]);
-}
-
-/// \brief out = M(q) a (docs/model.md "Dynamics": blockdiag(m_o, m_o, I_o, M_R)).
-///        q is read from z at offset oq.
+/// \brief out = M(q) a (dynamics/equations.h), without forming M. q is read from z at
+///        offset oq.
 template <class S>
 void massTimes(const Cell& cell, const S* z, int oq, const ConfigVector<S>& a,
                ConfigVector<S>& out) {
@@ -122,12 +125,10 @@ void massTimes(const Cell& cell, const S* z, int oq, const ConfigVector<S>& a,
   out[layout::kX] = cell.object.mass * a[layout::kX];
   out[layout::kY] = cell.object.mass * a[layout::kY];
   out[layout::kPhi] = cell.object.inertia * a[layout::kPhi];
-  S base = S(cell.base.inertia) * a[layout::kTheta];
+  S base = equations::baseInertia<S>(cell, z + oq) * a[layout::kTheta];
   for (int i = 0; i < m; ++i) {
     const FingerParams& f = cell.fingers[i];
-    const S L = z[oq + layout::stroke(i)] + f.com_offset;
-    base += (f.inertia + f.mass * (f.r * f.r + L * L)) * a[layout::kTheta] +
-            f.mass * f.r * a[layout::stroke(i)];
+    base += f.mass * f.r * a[layout::stroke(i)];
     out[layout::stroke(i)] = f.mass * f.r * a[layout::kTheta] + f.mass * a[layout::stroke(i)];
   }
   out[layout::kTheta] = base;
@@ -141,8 +142,6 @@ void massTimes(const Cell& cell, const S* z, int oq, const ConfigVector<S>& a,
 template <class S>
 void knotRhs(const RbsfModel& model, const DecisionLayout& dl, const S* z, int o,
              ConfigVector<S>& r) {
-  using std::cos;
-  using std::sin;
   const Cell& cell = model.cell();
   const int m = model.numFingers();
   const int n = layout::configDim(m);
@@ -153,22 +152,8 @@ void knotRhs(const RbsfModel& model, const DecisionLayout& dl, const S* z, int o
   const S* fn = &z[o + dl.localFn()];
   const S* ft = &z[o + dl.localFt()];
   const S* xi = &z[o + dl.localXi()];
-  const S ct = cos(q[layout::kTheta]), st = sin(q[layout::kTheta]);
-  const double g0 = cell.gravity;
-  // -Q (docs/model.md "Dynamics") plus u.
-  r[layout::kX] = S(0.0);
-  r[layout::kY] = S(-cell.object.mass * g0);
-  r[layout::kPhi] = S(0.0);
-  const S theta_dot = v[layout::kTheta];
-  S q_theta = S(0.0);
-  for (int i = 0; i < m; ++i) {
-    const FingerParams& f = cell.fingers[i];
-    const S L = q[layout::stroke(i)] + f.com_offset;
-    q_theta +=
-        2.0 * f.mass * L * v[layout::stroke(i)] * theta_dot + f.mass * g0 * (f.r * ct - L * st);
-    r[layout::stroke(i)] = f.mass * L * theta_dot * theta_dot - f.mass * g0 * ct;
-  }
-  r[layout::kTheta] = -q_theta;
+  equations::bias<S>(cell, q, v, r);
+  for (int a = 0; a < n; ++a) r[a] = -r[a];
   for (int j = 0; j < layout::controlDim(m); ++j) r[layout::inputToConfig(j)] += tau[j];
   // Contact forces.
   S w[5];
