@@ -16,7 +16,16 @@ namespace rbsf::planner {
 
 namespace {
 
-void checkSettings(const RbsfModel& model, const Plan& plan, const CertificateSettings& s) {
+void checkFits(const RbsfModel& model, const Plan& plan, const CertificateSettings& s) {
+  checkSettings(s);
+  if (plan.q0.size() != model.configDim())
+    throw InputError("the plan is for " + std::to_string(plan.q0.size() - 4) +
+                     " fingers, the cell has " + std::to_string(model.numFingers()));
+}
+
+}  // namespace
+
+void checkSettings(const CertificateSettings& s) {
   if (s.trials < 1 || s.trials > 100000)
     throw InputError("certificate: trials must be in 1..100000 (got " + std::to_string(s.trials) +
                      ")");
@@ -33,10 +42,9 @@ void checkSettings(const RbsfModel& model, const Plan& plan, const CertificateSe
   if (!(h.max_free_time >= 0.0 && std::isfinite(h.max_free_time) && h.touch_force >= 0.0 &&
         h.slip_rate >= 0.0))
     throw InputError("certificate: holding's free time, touch force and slip rate must be >= 0");
-  if (plan.q0.size() != model.configDim())
-    throw InputError("the plan is for " + std::to_string(plan.q0.size() - 4) +
-                     " fingers, the cell has " + std::to_string(model.numFingers()));
 }
+
+namespace {
 
 /// Badness of an outcome for the worst-trial choice: failures first, then the final error.
 std::pair<int, double> badness(const TrialOutcome& o, const TrialSettings& s) {
@@ -117,7 +125,7 @@ bool betterCertificate(const Certificate& a, const Certificate& b) {
 
 Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateSettings& s,
                     std::vector<TrialOutcome>* all, const std::atomic<bool>* cancel) {
-  checkSettings(model, plan, s);
+  checkFits(model, plan, s);
   const FeedbackSchedule schedule = makeSchedule(model, plan, s);
   std::vector<TrialOutcome> outcomes(static_cast<std::size_t>(s.trials));
   std::atomic<int> next{0};
@@ -177,7 +185,7 @@ Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateS
 
 TrialOutcome traceTrial(const RbsfModel& model, const Plan& plan, const CertificateSettings& s,
                         int index, std::vector<TrajectorySample>& trace) {
-  checkSettings(model, plan, s);
+  checkFits(model, plan, s);
   const FeedbackSchedule schedule = makeSchedule(model, plan, s);
   const TrialDraw draw =
       index < 0 ? nominalDraw(model.cell(), plan) : drawTrial(model.cell(), plan, s.seed, index);

@@ -21,12 +21,7 @@ SimPropagator::SimPropagator(const oc::SpaceInformationPtr& si, const Simulator&
       m_(simulator.model().numFingers()),
       rule_(rule),
       ws_(simulator.model().numFingers()) {
-  if (rule.settle_steps < 0)
-    throw InputError("decisive modes: settle_steps must be >= 0 (got " +
-                     std::to_string(rule.settle_steps) + ")");
-  if (!(rule.cone_margin > 0.0 && rule.cone_margin <= 1.0))
-    throw InputError("decisive modes: cone_margin must be in (0, 1] (got " +
-                     std::to_string(rule.cone_margin) + ")");
+  checkSettings(rule);
 }
 
 void SimPropagator::propagate(const ompl::base::State* state, const oc::Control* control,

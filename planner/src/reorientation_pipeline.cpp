@@ -62,16 +62,14 @@ const char* statusText(PipelineStatus status) {
 ReorientationPipeline::ReorientationPipeline(const RbsfModel& model, PipelineSettings settings)
     : model_(model), settings_(std::move(settings)) {
   const PipelineSettings& s = settings_;
-  if (!(s.planner.time_limit > 0.0) || !std::isfinite(s.planner.time_limit))
-    throw InputError("time limit: must be positive and finite");
+  // Every stage's settings, before any work: a bad one never costs a search.
+  checkSettings(s.planner);
+  checkSettings(s.certificate);
   if (!(s.support_share > 0.0 && s.support_share <= 1.0))
     throw InputError("support share: must be in (0, 1]");
   if (s.max_attempts < 0) throw InputError("max attempts: must be 0 (no limit) or positive");
   if (!(s.min_attempt_time >= 0.0) || !std::isfinite(s.min_attempt_time))
     throw InputError("min attempt time: must be finite and not negative");
-  const auto& names = plannerNames();
-  if (std::find(names.begin(), names.end(), s.planner.planner) == names.end())
-    throw InputError("planner: unknown planner '" + s.planner.planner + "'");
 }
 
 PipelineOutcome ReorientationPipeline::run(const Problem& problem) {

@@ -42,16 +42,7 @@ std::string poseText(const Pose& p) {
 
 ReorientationPlanner::ReorientationPlanner(const RbsfModel& model, PlannerSettings settings)
     : model_(model), settings_(std::move(settings)), simulator_(model, settings_.simulator) {
-  const auto& names = plannerNames();
-  if (std::find(names.begin(), names.end(), settings_.planner) == names.end())
-    throw InputError("unknown planner '" + settings_.planner +
-                     "' (choose KPIECE1, RRT, SST, EST or PDST)");
-  if (!(settings_.time_limit > 0.0)) throw InputError("the time limit must be positive");
-  if (settings_.steps_per_control < 1 || settings_.min_control_steps < 1 ||
-      settings_.max_control_steps < settings_.min_control_steps || settings_.sample_steps < 1)
-    throw InputError("control steps must be positive and ordered");
-  if (!(settings_.position_tolerance > 0.0) || !(settings_.angle_tolerance > 0.0))
-    throw InputError("goal tolerances must be positive");
+  checkSettings(settings_);
 }
 
 VecQ ReorientationPlanner::checkProblem(const Problem& problem) const {

@@ -169,6 +169,47 @@ TEST(RbsfBench, ParallelAndShardedRunsEqualTheSequentialRun) {
   EXPECT_NE(twice.err.find("appears twice"), std::string::npos) << twice.err;
 }
 
+TEST(RbsfBench, OptimizeRunsTheProductsRefinementAndRecordsItsCertificate) {
+  // --optimize refines each exact plan as plan-reorientation does (optimise, certify the
+  // planner's plan and the refinement, keep the better): the kept plan's certificate is in
+  // the database and the summary.
+  const std::string out = scratch("optimize");
+  fs::create_directories(out);
+  const std::string suite = out + "/suite.yaml";
+  std::ofstream(suite) << "problems:\n  - name: 30deg\n    cell: " << RBSF_SOURCE_DIR
+                       << "/cells/default.yaml\n    start: 0.1,0.40,0\n"
+                          "    goal: 0.1,0.40,-30deg\n"
+                          "    tolerances: {position: 0.01, angle: 2deg}\n";
+  const Result r =
+      run("--problems " + suite + " --planners KPIECE1 --runs 2 --time-limit 20 --optimize --out " +
+          out + "/logs");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string db = out + "/logs/benchmark.db";
+  const std::string solved = sql(db, "SELECT COUNT(*) FROM runs WHERE solved = 1;");
+  ASSERT_NE(solved, "0\n") << "no exact plan within 20 s: nothing was refined";
+  // Every solved run was refined and judged; a certified kept plan holds 95 % of its trials,
+  // and a kept refinement converged.
+  EXPECT_EQ(sql(db,
+                "SELECT COUNT(*) FROM runs WHERE solved = 1 AND (certified IS NULL OR "
+                "refined_chosen IS NULL OR certificate_success_rate IS NULL);"),
+            "0\n");
+  EXPECT_EQ(sql(db,
+                "SELECT COUNT(*) FROM runs WHERE certified = 1 AND "
+                "certificate_success_rate < 0.95;"),
+            "0\n");
+  EXPECT_EQ(sql(db,
+                "SELECT COUNT(*) FROM runs WHERE refined_chosen = 1 AND "
+                "optimizer_success != 1;"),
+            "0\n");
+  const std::string certified = sql(db, "SELECT COUNT(*) FROM runs WHERE certified = 1;");
+  const std::vector<std::string> table = lines(slurp(out + "/logs/summary.txt"));
+  ASSERT_GE(table.size(), 2u);
+  EXPECT_NE(table[0].find("cert."), std::string::npos) << table[0];
+  const std::string cell =
+      certified.substr(0, certified.size() - 1) + "/" + solved.substr(0, solved.size() - 1);
+  EXPECT_NE(table[1].find(cell), std::string::npos) << table[1] << " (expected " << cell << ")";
+}
+
 TEST(RbsfBench, BadInputIsRefusedWithExitTwo) {
   const std::string bad_suite = scratch("bad.yaml");
   std::ofstream(bad_suite) << "problems:\n  - {name: x, cell: nowhere.yaml, start: \"0,0.4,0\", "

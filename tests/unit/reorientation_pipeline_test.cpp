@@ -150,6 +150,17 @@ TEST(ReorientationPipeline, BadSettingsAndProblemsAreInputErrors) {
   s = {};
   s.support_share = 0.0;
   EXPECT_THROW(ReorientationPipeline(model, s), InputError);
+  // Every stage's settings are checked when the pipeline is made, before any search: a bad
+  // certificate or decisive-modes setting never costs a plan.
+  s = {};
+  s.certificate.trials = 0;
+  EXPECT_THROW(ReorientationPipeline(model, s), InputError);
+  s = {};
+  s.planner.decisive_modes.cone_margin = 1.5;
+  EXPECT_THROW(ReorientationPipeline(model, s), InputError);
+  s = {};
+  s.planner.max_control_steps = 0;
+  EXPECT_THROW(ReorientationPipeline(model, s), InputError);
   Problem far = turn(0);
   far.goal.y = 3.0;  // no finger reaches it
   ReorientationPipeline pipeline(model, PipelineSettings{});

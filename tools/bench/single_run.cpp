@@ -14,6 +14,7 @@
 #include "rbsf/bench/benchmark_log.h"
 #include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/trajopt/plan_optimizer.h"
+#include "rbsf/trajopt/plan_refinement.h"
 
 namespace rbsf::bench {
 
@@ -97,7 +98,8 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
     if (rs.optimize)
       for (const char* key :
            {"optimizer success BOOLEAN", "optimizer status ENUM", "optimizer iterations INTEGER",
-            "optimizer time REAL", "cost before REAL", "cost after REAL", "cost reduction REAL"})
+            "optimizer time REAL", "cost before REAL", "cost after REAL", "cost reduction REAL",
+            "refined chosen BOOLEAN", "certified BOOLEAN", "certificate success rate REAL"})
         run[key] = "";
     run["run index INTEGER"] = std::to_string(spec.run);
     run["seed INTEGER"] = std::to_string(spec.seed);
@@ -123,19 +125,23 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
     run["solution duration REAL"] = num(plan.duration());
     run["path mismatch REAL"] = num(plan.path_mismatch);
     if (!rs.optimize) return;
-    // The optimiser after the run: OMPL's time is the planner's alone.
+    // The product's refinement after the run (OMPL's time is the planner's alone): optimise,
+    // certify the planner's plan and the refinement, keep the better (plan_refinement.h).
     const trajopt::PlanOptimizer optimizer(model);
-    const trajopt::OptimizedPlan opt = optimizer.optimize(plan);
-    const planner::OptimizationSummary& o = opt.plan.optimization;
-    run["optimizer success BOOLEAN"] = opt.success ? "1" : "0";
+    const trajopt::RefineOutcome out = trajopt::refinePlan(optimizer, plan);
+    const planner::OptimizationSummary& o = out.plan.optimization;
+    run["optimizer success BOOLEAN"] = out.converged ? "1" : "0";
     run["optimizer status ENUM"] = optimizerStatusIndex(o.status);
     run["optimizer iterations INTEGER"] = std::to_string(o.iterations);
     run["optimizer time REAL"] = num(o.solve_time);
     if (std::isfinite(o.cost_before)) run["cost before REAL"] = num(o.cost_before);
-    if (opt.success && std::isfinite(o.cost_after)) {
+    if (out.converged && std::isfinite(o.cost_after)) {
       run["cost after REAL"] = num(o.cost_after);
       if (o.cost_before > 0.0) run["cost reduction REAL"] = num(1.0 - o.cost_after / o.cost_before);
     }
+    run["refined chosen BOOLEAN"] = out.refined ? "1" : "0";
+    run["certified BOOLEAN"] = out.plan.certificate.certified ? "1" : "0";
+    run["certificate success rate REAL"] = num(out.plan.certificate.success_rate);
   });
   // One run, no console output, no path simplification (geometric only).
   const ompl::tools::Benchmark::Request request(rs.time_limit, 4096.0, 1, 0.05, false, false,

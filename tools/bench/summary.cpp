@@ -63,6 +63,7 @@ std::vector<SummaryRow> summarize(const std::vector<ExperimentLog>& logs) {
         total_time += t;
         if (solved && value(r, "solution duration REAL"))
           durations.push_back(real(r, "solution duration REAL", 0.0));
+        if (flag(r, "certified BOOLEAN")) ++row.certified;
         if (value(r, "optimizer success BOOLEAN")) {
           ++row.optimized;
           if (flag(r, "optimizer success BOOLEAN")) {
@@ -92,7 +93,7 @@ std::string formatSummary(const std::vector<SummaryRow>& rows, bool optimize) {
   std::snprintf(buf, sizeof buf, "%-16s %-8s %9s %7s %8s %8s %8s %9s %12s", "problem", "planner",
                 "solved", "success", "t q1[s]", "t med[s]", "t q3[s]", "prop/s", "duration[s]");
   out += buf;
-  if (optimize) out += "  opt ok  cost red.";
+  if (optimize) out += "  opt ok  cost red.    cert.";
   out += '\n';
   for (const SummaryRow& r : rows) {
     char solved[32];
@@ -114,6 +115,9 @@ std::string formatSummary(const std::vector<SummaryRow>& rows, bool optimize) {
                  "%")
                     .c_str()
               : "-");
+      out += buf;
+      std::snprintf(opt, sizeof opt, "%d/%d", r.certified, r.optimized);
+      std::snprintf(buf, sizeof buf, "  %7s", opt);
       out += buf;
     }
     out += '\n';

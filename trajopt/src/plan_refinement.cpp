@@ -35,6 +35,7 @@ bool cancelled(const PlanOptimizer& o) {
 /// One solve: its plan (when it succeeded and is finite) and its summary.
 struct Attempt {
   bool usable = false;
+  bool converged = false;  ///< Ipopt converged
   planner::Plan plan;
   planner::OptimizationSummary summary;
   std::string reason;  ///< why it is not usable
@@ -45,6 +46,7 @@ Attempt solve(const PlanOptimizer& optimizer, const planner::Plan& plan) {
   OptimizedPlan opt = optimizer.optimize(plan);
   a.summary = opt.plan.optimization;
   a.summary.ran = true;
+  a.converged = opt.success;
   std::string note;
   finite(a.summary.solve_time, "solve_time", note);
   finite(a.summary.cost_before, "cost_before", note);
@@ -124,6 +126,7 @@ RefineOutcome refinePlan(const PlanOptimizer& optimizer, const planner::Plan& pl
     out.reason = why.str();
   }
   out.plan.optimization = attempts[summary].summary;
+  out.converged = attempts[summary].converged;
   out.plan.optimization.chosen = out.refined;
   out.plan.optimization.message = why.str();
   return out;

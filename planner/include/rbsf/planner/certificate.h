@@ -44,6 +44,12 @@ struct CertificateSettings {
   FeedbackSettings feedback;    ///< the law's gains (settle_time: the hold after the plan)
 };
 
+/// \brief The rules of CertificateSettings, in one place (certify() and the pipeline check
+///        through it): trials in 1..100000, required_rate in [0, 1], threads >= 0, the
+///        trial's tolerances, windows and limits positive, saturation_time >= 0, holding's
+///        free time, touch force and slip rate >= 0. \throws InputError naming the setting.
+void checkSettings(const CertificateSettings& settings);
+
 /// \brief Run the trials and judge them.
 /// \param model the cell the law is made for and the trials draw around (its sensing and
 ///        uncertainty too).

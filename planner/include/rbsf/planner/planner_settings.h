@@ -97,4 +97,14 @@ struct Problem {
 /// \brief Planner names accepted by PlannerSettings::planner.
 const std::vector<std::string>& plannerNames();
 
+/// \brief The rules of DecisiveModes: settle_steps >= 0, cone_margin in (0, 1].
+///        \throws InputError naming the setting and its value.
+void checkSettings(const DecisiveModes& rule);
+
+/// \brief The rules of PlannerSettings, in one place (the planner, the pipeline and the
+///        tools check through it): a known planner name, a positive finite time limit,
+///        positive and ordered control steps, positive goal tolerances, and the
+///        decisive-modes rule's. \throws InputError naming the first bad setting.
+void checkSettings(const PlannerSettings& settings);
+
 }  // namespace rbsf::planner

@@ -27,8 +27,11 @@ struct RefineOutcome {
   ///        summary (of the chosen solve, else of the first; `chosen`, `message`).
   planner::Plan plan;
   bool refined = false;  ///< the chosen plan is an optimised one
-  std::string reason;    ///< why no optimised plan was chosen; empty when one was
-  int attempts = 0;      ///< solves run (1, or 2 with the retry)
+  /// \brief The solve summarised in plan.optimization converged (Ipopt's Solve_Succeeded or
+  ///        Solved_To_Acceptable_Level).
+  bool converged = false;
+  std::string reason;  ///< why no optimised plan was chosen; empty when one was
+  int attempts = 0;    ///< solves run (1, or 2 with the retry)
   /// \brief The planner's plan's certificate (also when an optimised plan is chosen).
   planner::Certificate planner_certificate;
 };

@@ -10,18 +10,21 @@
 ///
 /// rbsf's own figures are added to OMPL's run properties by the post-run event (the names
 /// are the columns of Planner Arena's runs table, spaces becoming underscores):
-/// | property | meaning |
-/// |----------|---------|
-/// | `run index INTEGER`, `seed INTEGER` | the run (run_list.h) |
-/// | `propagations INTEGER` | SimPropagator::propagate calls of the search (excluding OMPL's check
-/// of the solution path afterwards) | | `simulator steps INTEGER` | simulator steps of those
-/// propagations | | `propagations per second REAL` | propagations / OMPL's `time` | | `best goal
-/// distance REAL` | least goal distance reached (tolerance units, <= 1: goal) | | `solution
-/// duration REAL` | exact solutions: seconds of motion of the plan | | `path mismatch REAL` | exact
-/// solutions: re-simulated plan vs the planner's states | | `optimizer success BOOLEAN`, `optimizer
-/// status ENUM` (Ipopt's status, enum "optimizer status" in the log), `optimizer iterations
-/// INTEGER`, `optimizer time REAL`, `cost before REAL`, `cost after REAL`, `cost reduction REAL` |
-/// with --optimize, exact solutions: PlanOptimizer's solve; cost reduction = 1 - after / before |
+///   - `run index INTEGER`, `seed INTEGER`: the run (run_list.h);
+///   - `propagations INTEGER`: SimPropagator::propagate calls of the search (excluding
+///     OMPL's check of the solution path afterwards); `simulator steps INTEGER`: the
+///     simulator steps of those propagations; `propagations per second REAL`: propagations
+///     over OMPL's `time`;
+///   - `best goal distance REAL`: least goal distance reached (tolerance units, <= 1: goal);
+///   - exact solutions: `solution duration REAL` (seconds of motion of the plan), `path
+///     mismatch REAL` (re-simulated plan against the planner's states);
+///   - with --optimize, exact solutions, the product's refinement (trajopt::refinePlan:
+///     optimise, certify the planner's plan and the refinement, keep the better):
+///     `optimizer success BOOLEAN`, `optimizer status ENUM` (Ipopt's status, enum
+///     "optimizer status" in the log), `optimizer iterations INTEGER`, `optimizer time REAL`,
+///     `cost before REAL`, `cost after REAL`, `cost reduction REAL` (1 - after / before) of
+///     the summarised solve; `refined chosen BOOLEAN` (the refinement is the plan kept),
+///     `certified BOOLEAN` and `certificate success rate REAL` of the plan kept.
 
 #include <string>
 

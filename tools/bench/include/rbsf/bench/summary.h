@@ -11,6 +11,7 @@
 /// order statistics | | prop/s | sum of `propagations` / sum of `time` over all runs | | duration
 /// [s] | median `solution duration` (seconds of motion) over solved runs | | opt ok, cost red. |
 /// with --optimize: optimiser successes / solved runs, median `cost reduction` over successes |
+/// | cert. | with --optimize: runs whose kept plan is certified / solved runs |
 
 #include <string>
 #include <vector>
@@ -27,6 +28,7 @@ struct SummaryRow {
   double propagations_per_second = 0.0;
   double duration_median = -1.0;  ///< [s], < 0 when nothing solved
   int optimized = 0, optimizer_success = 0;
+  int certified = 0;  ///< --optimize: runs whose kept plan is certified
   double cost_reduction_median = 0.0;
 };
 
