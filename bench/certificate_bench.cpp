@@ -79,7 +79,7 @@ int run(int argc, char** argv) {
       ps.angle_tolerance = bp.angle_tolerance;
       rbsf::planner::ReorientationPlanner planner(model, ps);
       rbsf::planner::Plan plan;
-      if (!planner.solve(bp.problem, plan) || plan.status != "exact") {
+      if (!planner.solve(bp.problem, plan) || plan.status != rbsf::planner::PlanStatus::kExact) {
         std::printf("%-8s %4d no exact plan in %.0f s\n", bp.name.c_str(), seed, time_limit);
         continue;
       }

@@ -104,7 +104,7 @@ int run(int argc, char** argv) {
       p.start = {0.1, 0.40, 0.0};
       p.goal = c.goal;
       rbsf::planner::Plan plan;
-      if (!planner.solve(p, plan) || plan.status != "exact") continue;
+      if (!planner.solve(p, plan) || plan.status != rbsf::planner::PlanStatus::kExact) continue;
       ++plans;
       const std::clock_t cpu0 = std::clock();
       const rbsf::trajopt::RefineOutcome out = rbsf::trajopt::refinePlan(optimizer, plan);

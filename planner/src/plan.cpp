@@ -58,6 +58,10 @@ std::string filterPhaseRuns(const std::vector<std::pair<Phase, double>>& runs, d
   return seq;
 }
 
+std::string_view toString(PlanStatus status) {
+  return status == PlanStatus::kExact ? "exact" : "approximate";
+}
+
 Phase parsePhase(const std::string& text) {
   if (text == "C") return Phase::kC;
   if (text == "P") return Phase::kP;
@@ -166,7 +170,7 @@ std::string planJsonText(const Plan& plan, const PlanFileOptions& options) {
                        {"f_n", vec(s.f_n)},
                        {"phase", std::string(toString(s.phase))}});
   json j = json::object();
-  j["status"] = plan.status;
+  j["status"] = toString(plan.status);
   j["planner"] = plan.planner;
   j["seed"] = plan.seed;
   if (options.wall_clock) j["planning_time"] = plan.planning_time;
@@ -273,9 +277,11 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
   };
   try {
     Plan plan;
-    plan.status = need(j, "status", "").get<std::string>();
-    if (plan.status != "exact" && plan.status != "approximate")
+    const std::string status = need(j, "status", "").get<std::string>();
+    if (status != toString(PlanStatus::kExact) && status != toString(PlanStatus::kApproximate))
       throw InputError(path + ": status must be \"exact\" or \"approximate\"");
+    plan.status =
+        status == toString(PlanStatus::kExact) ? PlanStatus::kExact : PlanStatus::kApproximate;
     plan.planner = need(j, "planner", "").get<std::string>();
     plan.seed = static_cast<std::uint32_t>(integer(j, "seed", "", 0, 4294967295.0));
     if (j.contains("planning_time")) plan.planning_time = num(j, "planning_time", "");

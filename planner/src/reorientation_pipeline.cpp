@@ -93,7 +93,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
   // Judge one attempt's plan (refine, certify), keep it when it is the best so far.
   auto judge = [&](PipelineAttempt& a, Plan&& plan, Clock::time_point start, bool may_refine) {
     a.found = true;
-    a.exact = plan.status == "exact";
+    a.exact = plan.status == PlanStatus::kExact;
     if (s.on_found) s.on_found(a, plan);
     if (may_refine && a.exact && s.refine) {
       stage(PipelineStage::kRefining, a.method, a.seed);
@@ -173,7 +173,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
       // The path found so far is kept (not certified) when nothing better is.
       if (found && out.chosen < 0) {
         a.found = true;
-        a.exact = plan.status == "exact";
+        a.exact = plan.status == PlanStatus::kExact;
         out.chosen = static_cast<int>(out.attempts.size());
         best = std::move(plan);
       }
@@ -196,7 +196,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     out.status = PipelineStatus::kNoPlan;
   else if (out.plan.certificate.certified)
     out.status = PipelineStatus::kCertified;
-  else if (out.plan.status == "exact")
+  else if (out.plan.status == PlanStatus::kExact)
     out.status = PipelineStatus::kNotCertified;
   else
     out.status = PipelineStatus::kApproximate;

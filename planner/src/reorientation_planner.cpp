@@ -186,7 +186,7 @@ bool ReorientationPlanner::makePlan(const Problem& problem, const PlannerSetup& 
   const VecQ& q0 = setup.q0;
   auto& pc = static_cast<oc::PathControl&>(*path);
   plan = Plan();
-  plan.status = pdef->hasExactSolution() ? "exact" : "approximate";
+  plan.status = pdef->hasExactSolution() ? PlanStatus::kExact : PlanStatus::kApproximate;
   plan.planner = s.planner;
   plan.seed = s.seed;
   plan.planning_time = planning_time;

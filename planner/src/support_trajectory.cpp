@@ -257,7 +257,7 @@ Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference
   const double dphi = std::remainder(last.q[layout::kPhi] - goal.phi, 2.0 * M_PI);
   plan.goal_distance =
       std::max(std::hypot(dx, dy) / position_tolerance, std::abs(dphi) / angle_tolerance);
-  plan.status = plan.goal_distance <= 1.0 ? "exact" : "approximate";
+  plan.status = plan.goal_distance <= 1.0 ? PlanStatus::kExact : PlanStatus::kApproximate;
   return plan;
 }
 

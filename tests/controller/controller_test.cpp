@@ -97,7 +97,7 @@ TEST(ReorientationController, PlanCompletesAndSamplingReturnsItsKnots) {
   ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
   const RequestResult result = c.result();
   const planner::Plan& plan = result.plan;
-  ASSERT_EQ(plan.status, "exact");
+  ASSERT_EQ(plan.status, planner::PlanStatus::kExact);
   // Published with its certificate; the outcome says whether it earned it.
   ASSERT_TRUE(plan.certificate.ran);
   EXPECT_EQ(plan.certificate.trials, 4);

@@ -122,7 +122,7 @@ TEST_F(DecisiveModesTest, PlansKeepTheRuleInEveryPropagationStep) {
   ReorientationPlanner rp(model, settings(1));
   Plan plan;
   ASSERT_TRUE(rp.solve(problem(-30.0), plan));
-  ASSERT_EQ(plan.status, "exact");
+  ASSERT_EQ(plan.status, planner::PlanStatus::kExact);
   const int m = model.numFingers();
   RuleOracle oracle(model, rp.settings().decisive_modes, rp.settings().steps_per_control);
   SimState sim(plan.q0, VecQ::Zero(m + 4));
@@ -148,7 +148,7 @@ TEST_F(DecisiveModesTest, NinetyDegreePlanIsFollowedByTheJointServoToItsEnd) {
   ReorientationPlanner rp(model, settings(2));
   Plan plan;
   ASSERT_TRUE(rp.solve(problem(-90.0), plan));
-  ASSERT_EQ(plan.status, "exact");
+  ASSERT_EQ(plan.status, planner::PlanStatus::kExact);
   Cell joints_only = model.cell();
   joints_only.sensing.part_pose.present = false;
   const RbsfModel cell(joints_only);

@@ -73,7 +73,7 @@ inline planner::Plan twoTipsPlan(const RbsfModel& model, double amplitude = M_PI
   SimulatorWorkspace ws(m);
   SimState state(q0, VecQ::Zero(q0.size()));
   planner::Plan plan;
-  plan.status = "exact";
+  plan.status = planner::PlanStatus::kExact;
   plan.planner = "test: the part-feedback law on the exact state";
   plan.q0 = q0;
   plan.start = {q0[0], q0[1], q0[2]};
@@ -115,7 +115,7 @@ inline planner::Plan holdPlan(const RbsfModel& model, const VecQ& q0, double dur
   ModelData data(model.numFingers());
   model.updateContacts(q0, data);
   planner::Plan plan;
-  plan.status = "exact";
+  plan.status = planner::PlanStatus::kExact;
   plan.q0 = q0;
   plan.start = plan.goal = {q0[0], q0[1], q0[2]};
   planner::PlanSegment seg;

@@ -91,7 +91,7 @@ TEST(InterruptDeathTest, SecondSigintExitsAtOnceWithStatus130) {
 
 planner::Plan tinyPlan() {
   planner::Plan p;
-  p.status = "approximate";
+  p.status = planner::PlanStatus::kApproximate;
   p.planner = "KPIECE1";
   p.seed = 3;
   p.planning_time = 1.25;

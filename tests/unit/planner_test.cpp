@@ -45,7 +45,7 @@ TEST_F(PlannerTest, SmallProblemSolvedExactlyAndReproducedByResimulation) {
   ReorientationPlanner planner(model, testSettings(7));
   Plan plan;
   ASSERT_TRUE(planner.solve(smallProblem(), plan));
-  ASSERT_EQ(plan.status, "exact");
+  ASSERT_EQ(plan.status, planner::PlanStatus::kExact);
   EXPECT_LE(plan.goal_distance, 1.0);
   ASSERT_FALSE(plan.segments.empty());
   // The planner's own tree states equal the re-simulation of its controls.
@@ -139,7 +139,7 @@ TEST_F(PlannerTest, SameSeedSamePlan) {
     ReorientationPlanner planner(model, testSettings(3));
     ASSERT_TRUE(planner.solve(smallProblem(), b));
   }
-  ASSERT_EQ(a.status, "exact");
+  ASSERT_EQ(a.status, planner::PlanStatus::kExact);
   ASSERT_EQ(a.segments.size(), b.segments.size());
   for (size_t k = 0; k < a.segments.size(); ++k) {
     EXPECT_EQ(a.segments[k].steps, b.segments[k].steps);

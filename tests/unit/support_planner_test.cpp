@@ -114,7 +114,7 @@ TEST(SupportTrajectory, ThePlanIsExactSlowJointFedBackAndEndsAtRestOnTheGoal) {
 
   const Plan plan = closedLoopPlan(model, ref, SimulatorSettings{}, FeedbackSettings{}, kTurn15,
                                    0.01, 2.0 * M_PI / 180, 10);
-  EXPECT_EQ(plan.status, "exact");
+  EXPECT_EQ(plan.status, planner::PlanStatus::kExact);
   EXPECT_TRUE(plan.joint_feedback);
   const PlanSample& last = plan.samples.back();
   EXPECT_LT(std::hypot(last.v[layout::kX], last.v[layout::kY]), 1e-3);

@@ -75,8 +75,8 @@ void PlanOutputs::write(const RbsfModel& model, const planner::Plan& plan) const
   if (!o_.svg.empty() || !o_.report.empty()) {
     SvgAnimationOptions a;
     a.title = "plan-reorientation: " + o_.cell_label;
-    a.subtitle = plan.status + " plan from " + poseText(plan.start) + " to " + poseText(plan.goal) +
-                 " (dashed)";
+    a.subtitle = std::string(planner::toString(plan.status)) + " plan from " +
+                 poseText(plan.start) + " to " + poseText(plan.goal) + " (dashed)";
     a.goal = plan.goal;
     a.still_time = o_.svg_still;
     if (!o_.svg.empty())
@@ -84,7 +84,7 @@ void PlanOutputs::write(const RbsfModel& model, const planner::Plan& plan) const
     if (!o_.report.empty()) {
       std::vector<std::pair<std::string, std::string>> rows = {
           {"cell", o_.cell_label},
-          {"status", plan.status},
+          {"status", std::string(planner::toString(plan.status))},
           {"start",
            poseText(plan.start) + format(", base %.1f deg", plan.start_theta * 180 / M_PI)},
           {"goal", poseText(plan.goal)},

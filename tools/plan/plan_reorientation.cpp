@@ -226,7 +226,7 @@ int run(int argc, char** argv) {
           "support path: sticking forces within %.2f of the friction cone, %ld "
           "expansions\n",
           a.friction_use, a.expansions);
-    if (plan.status != "exact") return;
+    if (plan.status != planner::PlanStatus::kExact) return;
     std::printf(
         "exact plan: %zu segments, %.3f s of motion, phases %s; planned in %.3f s, %llu "
         "propagations\n",

@@ -99,9 +99,16 @@ struct OptimizationSummary {
 /// \brief One point of the densely sampled trajectory (trajectory_sample.h).
 using PlanSample = TrajectorySample;
 
+/// \brief Whether a plan reaches its goal: kExact when its end is within the goal's
+///        tolerances, kApproximate for the closest a search came.
+enum class PlanStatus { kExact, kApproximate };
+
+/// \brief "exact" or "approximate", the words of the plan file and the outputs.
+std::string_view toString(PlanStatus status);
+
 /// \brief The planner's result.
 struct Plan {
-  std::string status = "approximate";  ///< "exact" or "approximate"
+  PlanStatus status = PlanStatus::kApproximate;
   std::string planner;
   std::uint32_t seed = 0;
   double planning_time = 0.0;
