@@ -19,7 +19,7 @@
 #include "bench_stats.h"
 #include "rbsf/bench/problem_suite.h"
 #include "rbsf/dynamics/cell.h"
-#include "rbsf/planner/certificate.h"
+#include "rbsf/plan/certificate.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/trajopt/plan_optimizer.h"
@@ -78,8 +78,8 @@ int run(int argc, char** argv) {
       ps.position_tolerance = bp.position_tolerance;
       ps.angle_tolerance = bp.angle_tolerance;
       rbsf::planner::ReorientationPlanner planner(model, ps);
-      rbsf::planner::Plan plan;
-      if (!planner.solve(bp.problem, plan) || plan.status != rbsf::planner::PlanStatus::kExact) {
+      rbsf::plan::Plan plan;
+      if (!planner.solve(bp.problem, plan) || plan.status != rbsf::plan::PlanStatus::kExact) {
         std::printf("%-8s %4d no exact plan in %.0f s\n", bp.name.c_str(), seed, time_limit);
         continue;
       }
@@ -88,19 +88,19 @@ int run(int argc, char** argv) {
       os.knots = knots;
       const rbsf::trajopt::OptimizedPlan refined =
           rbsf::trajopt::PlanOptimizer(model, os).optimize(plan);
-      rbsf::planner::CertificateSettings cs;
+      rbsf::plan::CertificateSettings cs;
       cs.trials = trials;
       cs.trial.position_tolerance = bp.position_tolerance;
       cs.trial.angle_tolerance = bp.angle_tolerance;
       Row row;
-      rbsf::planner::Certificate worst;
+      rbsf::plan::Certificate worst;
       for (int kind = 0; kind < 2; ++kind) {
         if (kind == 1 && !refined.success) continue;
-        const rbsf::planner::Plan& p = kind == 0 ? plan : refined.plan;
+        const rbsf::plan::Plan& p = kind == 0 ? plan : refined.plan;
         for (int law = 0; law < 2; ++law) {
           const auto t0 = Clock::now();
-          const rbsf::planner::Certificate c =
-              rbsf::planner::certify(law == 0 ? model : joints_only, p, cs);
+          const rbsf::plan::Certificate c =
+              rbsf::plan::certify(law == 0 ? model : joints_only, p, cs);
           if (law == 0)
             cert_time.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
           row.rate[kind][law] = c.success_rate;
@@ -121,7 +121,7 @@ int run(int argc, char** argv) {
       std::printf("%-8s %4d %-9s %s %s %s %s  %s\n", bp.name.c_str(), seed,
                   plan.phaseSequence().substr(0, 9).c_str(), cellText(0, 0).c_str(),
                   cellText(0, 1).c_str(), cellText(1, 0).c_str(), cellText(1, 1).c_str(),
-                  rbsf::planner::worstTrialText(worst).c_str());
+                  rbsf::plan::worstTrialText(worst).c_str());
       std::fflush(stdout);
       rows.push_back(row);
     }

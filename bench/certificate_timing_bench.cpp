@@ -12,7 +12,7 @@
 #include "law_support.h"
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/placement.h"
-#include "rbsf/planner/certificate.h"
+#include "rbsf/plan/certificate.h"
 
 namespace rbsf {
 namespace {
@@ -20,12 +20,12 @@ namespace {
 void BM_CertificateFullLength(benchmark::State& state) {
   const RbsfModel model(loadCell(std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml"));
   const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.40, 0.0}, 0.0);
-  const planner::Plan plan = test::holdPlan(model, q0, 3.0);
-  planner::CertificateSettings settings;
+  const plan::Plan plan = test::holdPlan(model, q0, 3.0);
+  plan::CertificateSettings settings;
   settings.trials = 32;
   int successes = 0;
   for (auto _ : state) {
-    const planner::Certificate c = planner::certify(model, plan, settings);
+    const plan::Certificate c = plan::certify(model, plan, settings);
     successes = c.successes;
     benchmark::DoNotOptimize(successes);
   }

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "rbsf/controller/reorientation_controller.h"
-#include "rbsf/planner/plan_reference.h"
+#include "rbsf/plan/plan_reference.h"
 
 namespace rbsf::controller {
 namespace {
@@ -129,8 +129,8 @@ BENCHMARK(BM_ControllerSampleWhilePlanning);
 /// The reference alone, without the facade's publication: the facade's overhead is the
 /// difference to BM_ControllerSample.
 void BM_ReferenceTrajectorySample(benchmark::State& state) {
-  const planner::Plan plan = readyController().result().plan;
-  const ReferenceTrajectory reference = planner::makeReference(plan);
+  const plan::Plan plan = readyController().result().plan;
+  const ReferenceTrajectory reference = plan::makeReference(plan);
   ReferenceSample ref;
   reference.sample(0.0, ref);
   long k = 0;

@@ -15,7 +15,7 @@ void BM_OptimizerSolve(benchmark::State& state) {
   trajopt::OptimizerSettings s;
   s.knots = static_cast<int>(state.range(0));
   const trajopt::PlanOptimizer optimizer(trajopt::test::defaultModel(), s);
-  const planner::Plan& plan = trajopt::test::shortPlan();
+  const plan::Plan& plan = trajopt::test::shortPlan();
   trajopt::OptimizedPlan out;
   for (auto _ : state) {
     out = optimizer.optimize(plan);

@@ -103,14 +103,14 @@ int run(int argc, char** argv) {
       rbsf::planner::Problem p;
       p.start = {0.1, 0.40, 0.0};
       p.goal = c.goal;
-      rbsf::planner::Plan plan;
-      if (!planner.solve(p, plan) || plan.status != rbsf::planner::PlanStatus::kExact) continue;
+      rbsf::plan::Plan plan;
+      if (!planner.solve(p, plan) || plan.status != rbsf::plan::PlanStatus::kExact) continue;
       ++plans;
       const std::clock_t cpu0 = std::clock();
       const rbsf::trajopt::RefineOutcome out = rbsf::trajopt::refinePlan(optimizer, plan);
       const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
       cpu_times.push_back(cpu);
-      const rbsf::planner::OptimizationSummary& o = out.plan.optimization;
+      const rbsf::plan::OptimizationSummary& o = out.plan.optimization;
       if (verbose)
         std::printf(
             "  seed %d: %s (%s, %zu segments) %s, %d iterations, %.3f s (refinement cpu %.3f "

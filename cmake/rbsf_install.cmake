@@ -1,7 +1,7 @@
 # The installed package: `cmake --install build --prefix P` puts the headers under
 # P/include/rbsf, the libraries under P/lib, the tools under P/bin and the CMake package
 # under P/lib/cmake/rbsf, so that find_package(rbsf) (with P in CMAKE_PREFIX_PATH) gives
-# rbsf::dynamics, rbsf::planner, rbsf::trajopt and rbsf::controller. Every path in it is
+# rbsf::dynamics, rbsf::plan, rbsf::planner, rbsf::trajopt and rbsf::controller. Every path in it is
 # relative to P: the tree may be moved.
 include(CMakePackageConfigHelpers)
 set(RBSF_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/rbsf)
@@ -18,7 +18,7 @@ if(NOT DEFINED RBSF_CONFIG_EXTRA)
 endif()
 
 # Libraries and their headers (one include/ folder per module).
-set(_rbsf_modules dynamics planner controller)
+set(_rbsf_modules dynamics plan planner controller)
 if(TARGET rbsf_trajopt)
   list(APPEND _rbsf_modules trajopt)
   string(APPEND RBSF_CONFIG_EXTRA

@@ -209,7 +209,7 @@ int run(int argc, char** argv) {
   std::printf("plan       %.3f s, %zu segments, phases %s (%s)\n", duration,
               result.plan.segments.size(), result.plan.phaseSequence().c_str(),
               controller::toString(result.outcome));
-  std::printf("certificate %s\n", planner::verdictText(result.plan.certificate).c_str());
+  std::printf("certificate %s\n", plan::verdictText(result.plan.certificate).c_str());
   std::printf(
       "executed   max joint error %.3e (rad or m; start offset %.1e); %.2f s after the "
       "end the part is %.4f m and %.3f deg from the goal\n",

@@ -9,7 +9,7 @@
 
 #include "rbsf/dynamics/control_law.h"
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/planner/plan_reference.h"
+#include "rbsf/plan/plan_reference.h"
 #ifdef RBSF_CONTROLLER_WITH_TRAJOPT
 #include "rbsf/trajopt/plan_refinement.h"
 #endif
@@ -60,13 +60,13 @@ namespace {
 /// \brief What a real-time reader sees: one plan's schedule (reference and gains), and
 ///        the law the loop thread runs on it (its only mutable part).
 struct PublishedPlan {
-  PublishedPlan(std::uint64_t id_, const RbsfModel& model, const planner::Plan& plan,
+  PublishedPlan(std::uint64_t id_, const RbsfModel& model, const plan::Plan& plan,
                 const FeedbackSettings& feedback)
       : id(id_),
         duration(plan.duration()),
         q0(plan.q0),
-        schedule(model, planner::makeReference(plan),
-                 planner::lawSensing(model.cell().sensing, plan), plan.simulator, feedback),
+        schedule(model, plan::makeReference(plan), plan::lawSensing(model.cell().sensing, plan),
+                 plan.simulator, feedback),
         law(schedule) {}
 
   std::uint64_t id;
@@ -89,7 +89,7 @@ struct ReorientationController::Impl {
     p.law.reset();
     tracked_id = p.id;
   }
-  void finish(PlanOutcome outcome, std::string message, planner::Plan plan, double best,
+  void finish(PlanOutcome outcome, std::string message, plan::Plan plan, double best,
               bool publish_it);
 
   const RbsfModel model;
@@ -106,7 +106,7 @@ struct ReorientationController::Impl {
   RequestResult result;
 };
 
-void ReorientationController::Impl::finish(PlanOutcome how, std::string message, planner::Plan plan,
+void ReorientationController::Impl::finish(PlanOutcome how, std::string message, plan::Plan plan,
                                            double best, bool publish_it) {
   std::uint64_t id = 0;
   if (publish_it) {
@@ -152,7 +152,7 @@ void ReorientationController::Impl::run(ReorientationRequest request) {
     planner::ReorientationPipeline pipe(model, std::move(pipeline));
     planner::PipelineOutcome out = pipe.run(request.problem);
     best = out.best_distance;
-    planner::Plan& plan = out.plan;
+    plan::Plan& plan = out.plan;
     const planner::PipelineAttempt* chosen = out.chosen >= 0 ? &out.attempts[out.chosen] : nullptr;
     if (chosen != nullptr && !chosen->refined && !chosen->note.empty()) note += chosen->note + "; ";
     switch (out.status) {
@@ -165,18 +165,18 @@ void ReorientationController::Impl::run(ReorientationRequest request) {
         finish(PlanOutcome::kNoPath, "the planner produced no path", {}, best, false);
         return;
       case planner::PipelineStatus::kApproximate:
-        note += planner::verdictText(plan.certificate);
+        note += plan::verdictText(plan.certificate);
         finish(PlanOutcome::kApproximate,
                "time limit: closest approach " + std::to_string(best) + " tolerance units; " + note,
                std::move(plan), best, request.accept_approximate);
         return;
       case planner::PipelineStatus::kNotCertified:
-        note += planner::verdictText(plan.certificate);
+        note += plan::verdictText(plan.certificate);
         finish(PlanOutcome::kNotCertified, std::move(note), std::move(plan), best,
                request.accept_uncertified);
         return;
       case planner::PipelineStatus::kCertified:
-        note += planner::verdictText(plan.certificate);
+        note += plan::verdictText(plan.certificate);
         finish(chosen->refined ? PlanOutcome::kOptimized : PlanOutcome::kExact, std::move(note),
                std::move(plan), best, true);
         return;

@@ -1,10 +1,17 @@
 #include "rbsf/dynamics/placement.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "rbsf/dynamics/errors.h"
 
 namespace rbsf {
+
+double angleDifference(double a, double b) {
+  double d = std::remainder(a - b, 2.0 * M_PI);
+  if (d <= -M_PI) d += 2.0 * M_PI;
+  return d;
+}
 
 Placement placeFingers(const RbsfModel& model, const Pose& pose, double theta) {
   const int m = model.numFingers();

@@ -7,12 +7,6 @@
 
 namespace rbsf::planner {
 
-double angleDifference(double a, double b) {
-  double d = std::remainder(a - b, 2.0 * M_PI);
-  if (d <= -M_PI) d += 2.0 * M_PI;
-  return d;
-}
-
 double goalAngleError(double phi, double phi_goal, bool absolute_angle) {
   return absolute_angle ? phi - phi_goal : angleDifference(phi, phi_goal);
 }

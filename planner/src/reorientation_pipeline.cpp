@@ -83,17 +83,18 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
   ReorientationPlanner kinodynamic(model_, s.planner);
   kinodynamic.checkProblem(problem);  // bad input before any search
 
-  CertificateSettings certificate = s.certificate;
+  plan::CertificateSettings certificate = s.certificate;
   certificate.trial.position_tolerance = s.planner.position_tolerance;
   certificate.trial.angle_tolerance = s.planner.angle_tolerance;
 
   PipelineOutcome out;
   out.best_distance = std::numeric_limits<double>::infinity();
-  Plan best;
+  plan::Plan best;
   // Judge one attempt's plan (refine, certify), keep it when it is the best so far.
-  auto judge = [&](PipelineAttempt& a, Plan&& plan, Clock::time_point start, bool may_refine) {
+  auto judge = [&](PipelineAttempt& a, plan::Plan&& plan, Clock::time_point start,
+                   bool may_refine) {
     a.found = true;
-    a.exact = plan.status == PlanStatus::kExact;
+    a.exact = plan.status == plan::PlanStatus::kExact;
     if (s.on_found) s.on_found(a, plan);
     if (may_refine && a.exact && s.refine) {
       stage(PipelineStage::kRefining, a.method, a.seed);
@@ -114,7 +115,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     out.attempts.push_back(a);
   };
   // Record an attempt whose search found nothing.
-  auto nothing = [&](PipelineAttempt& a, const Plan& plan, std::string note) {
+  auto nothing = [&](PipelineAttempt& a, const plan::Plan& plan, std::string note) {
     a.note = std::move(note);
     a.wall_time = a.search_time;
     if (s.on_attempt) s.on_attempt(a, plan);
@@ -133,7 +134,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     PipelineAttempt a;
     a.method = "support";
     stage(PipelineStage::kSupportSearch, a.method, 0);
-    Plan plan;
+    plan::Plan plan;
     const bool found = support.solve(problem, plan);
     a.search_time = since(start);
     a.expansions = support.expansions();
@@ -163,7 +164,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     a.method = ps.planner;
     a.seed = seed;
     stage(PipelineStage::kKinodynamicSearch, a.method, seed);
-    Plan plan;
+    plan::Plan plan;
     const bool found = search.solve(problem, plan);
     a.search_time = since(start);
     out.best_distance = std::min(out.best_distance, search.bestDistance());
@@ -173,7 +174,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
       // The path found so far is kept (not certified) when nothing better is.
       if (found && out.chosen < 0) {
         a.found = true;
-        a.exact = plan.status == PlanStatus::kExact;
+        a.exact = plan.status == plan::PlanStatus::kExact;
         out.chosen = static_cast<int>(out.attempts.size());
         best = std::move(plan);
       }
@@ -196,7 +197,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     out.status = PipelineStatus::kNoPlan;
   else if (out.plan.certificate.certified)
     out.status = PipelineStatus::kCertified;
-  else if (out.plan.status == PlanStatus::kExact)
+  else if (out.plan.status == plan::PlanStatus::kExact)
     out.status = PipelineStatus::kNotCertified;
   else
     out.status = PipelineStatus::kApproximate;

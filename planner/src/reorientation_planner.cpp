@@ -148,7 +148,7 @@ PlannerSetup ReorientationPlanner::setup(const Problem& problem) const {
   return out;
 }
 
-bool ReorientationPlanner::solve(const Problem& problem, Plan& plan) {
+bool ReorientationPlanner::solve(const Problem& problem, plan::Plan& plan) {
   const PlannerSettings& s = settings_;
   ompl::RNG::setSeed(s.seed == 0 ? 1 : s.seed);
   const PlannerSetup setup = this->setup(problem);
@@ -177,7 +177,7 @@ bool ReorientationPlanner::solve(const Problem& problem, Plan& plan) {
 }
 
 bool ReorientationPlanner::makePlan(const Problem& problem, const PlannerSetup& setup,
-                                    double planning_time, Plan& plan) const {
+                                    double planning_time, plan::Plan& plan) const {
   const PlannerSettings& s = settings_;
   const ob::ProblemDefinitionPtr& pdef = setup.simple_setup->getProblemDefinition();
   const ob::PathPtr path = pdef->getSolutionPath();
@@ -185,8 +185,9 @@ bool ReorientationPlanner::makePlan(const Problem& problem, const PlannerSetup& 
   const double dt = simulator_.settings().time_step;
   const VecQ& q0 = setup.q0;
   auto& pc = static_cast<oc::PathControl&>(*path);
-  plan = Plan();
-  plan.status = pdef->hasExactSolution() ? PlanStatus::kExact : PlanStatus::kApproximate;
+  plan = plan::Plan();
+  plan.status =
+      pdef->hasExactSolution() ? plan::PlanStatus::kExact : plan::PlanStatus::kApproximate;
   plan.planner = s.planner;
   plan.seed = s.seed;
   plan.planning_time = planning_time;
@@ -198,7 +199,7 @@ bool ReorientationPlanner::makePlan(const Problem& problem, const PlannerSetup& 
   plan.goal = problem.goal;
   plan.q0 = q0;
   for (std::size_t k = 0; k < pc.getControlCount(); ++k) {
-    PlanSegment seg;
+    plan::PlanSegment seg;
     seg.steps = static_cast<int>(std::lround(pc.getControlDuration(k) / dt));
     seg.duration = seg.steps * dt;
     const double* u = pc.getControl(k)->as<oc::RealVectorControlSpace::ControlType>()->values;

@@ -18,7 +18,7 @@ SupportSearchSettings SupportPlannerSettings::defaultSearch() {
 SupportPlanner::SupportPlanner(const RbsfModel& model, SupportPlannerSettings settings)
     : model_(model), settings_(std::move(settings)) {}
 
-bool SupportPlanner::solve(const Problem& problem, Plan& plan) {
+bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point t0 = Clock::now();
   message_.clear();
@@ -42,7 +42,7 @@ bool SupportPlanner::solve(const Problem& problem, Plan& plan) {
   }
   if (!path.found) {
     message_ = path.message.empty() ? "no time left for a search" : path.message;
-    plan = Plan{};
+    plan = plan::Plan{};
     return false;
   }
   // The cell's motion limits bound the timing's speeds (the part turns with psi and theta).

@@ -8,7 +8,7 @@
 #include "rbsf/dynamics/control_law.h"
 #include "rbsf/dynamics/rollout.h"
 #include "rbsf/dynamics/state_layout.h"
-#include "rbsf/planner/plan_reference.h"
+#include "rbsf/plan/plan_reference.h"
 
 namespace rbsf::planner {
 namespace {
@@ -213,11 +213,11 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
   return ref;
 }
 
-Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference,
-                    const SimulatorSettings& simulator, const FeedbackSettings& feedback,
-                    const Pose& goal, double position_tolerance, double angle_tolerance,
-                    int sample_steps, int control_steps) {
-  Plan plan;
+plan::Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference,
+                          const SimulatorSettings& simulator, const FeedbackSettings& feedback,
+                          const Pose& goal, double position_tolerance, double angle_tolerance,
+                          int sample_steps, int control_steps) {
+  plan::Plan plan;
   plan.joint_feedback = true;
   const FeedbackSchedule schedule(model, reference, lawSensing(model.cell().sensing, plan),
                                   simulator, feedback);
@@ -241,7 +241,7 @@ Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference
       [&](const SimState& now, long n, VecU& tau) {
         if (n % control_steps == 0) {  // the law once per segment, its input held
           law.computeFromState(static_cast<double>(n) * h, now.q, now.v, held);
-          PlanSegment seg;
+          plan::PlanSegment seg;
           seg.steps = static_cast<int>(std::min<long>(control_steps, steps - n));
           seg.duration = seg.steps * h;
           seg.tau = held;
@@ -252,12 +252,13 @@ Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference
       },
       [](const SimState&, const StepReport&, const VecU&, long) { return true; });
   plan.samples = simulateSegments(sim, plan.q0, plan.segments, sample_steps);
-  const PlanSample& last = plan.samples.back();
+  const plan::PlanSample& last = plan.samples.back();
   const double dx = last.q[layout::kX] - goal.x, dy = last.q[layout::kY] - goal.y;
   const double dphi = std::remainder(last.q[layout::kPhi] - goal.phi, 2.0 * M_PI);
   plan.goal_distance =
       std::max(std::hypot(dx, dy) / position_tolerance, std::abs(dphi) / angle_tolerance);
-  plan.status = plan.goal_distance <= 1.0 ? PlanStatus::kExact : PlanStatus::kApproximate;
+  plan.status =
+      plan.goal_distance <= 1.0 ? plan::PlanStatus::kExact : plan::PlanStatus::kApproximate;
   return plan;
 }
 

@@ -14,7 +14,7 @@
 
 #include <rbsf/controller/reorientation_controller.h>
 #include <rbsf/dynamics/state_layout.h>
-#include <rbsf/planner/certificate_report.h>
+#include <rbsf/plan/certificate_report.h>
 #include <rbsf/trajopt/plan_optimizer.h>
 
 int main(int argc, char** argv) {
@@ -48,14 +48,14 @@ int main(int argc, char** argv) {
     const int m = static_cast<int>(result.plan.q0.size()) - rbsf::layout::configDim(0);
     rbsf::VecU joints(rbsf::layout::controlDim(m)), tau;
     double worst = 0.0;
-    for (const rbsf::planner::PlanSample& s : result.plan.samples) {
+    for (const rbsf::plan::PlanSample& s : result.plan.samples) {
       if (!ctl.sample(s.t, ref)) return 1;
       worst = std::max(worst, (ref.q - s.q).cwiseAbs().maxCoeff());
       for (int j = 0; j < joints.size(); ++j) joints[j] = s.q[rbsf::layout::inputToConfig(j)];
       if (!ctl.track(s.t, joints, tau) || !tau.allFinite()) return 1;
     }
     std::printf("rbsf_consumer: certificate %s\n",
-                rbsf::planner::verdictText(result.plan.certificate).c_str());
+                rbsf::plan::verdictText(result.plan.certificate).c_str());
     const auto& last = result.plan.samples.back();
     std::printf(
         "rbsf_consumer: %zu segments, %.3f s, phases %s, final phi %.4f rad (goal "

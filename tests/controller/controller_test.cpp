@@ -15,7 +15,7 @@
 #include "rbsf/controller/reorientation_controller.h"
 #include "rbsf/dynamics/control_law.h"
 #include "rbsf/dynamics/state_layout.h"
-#include "rbsf/planner/plan_reference.h"
+#include "rbsf/plan/plan_reference.h"
 
 namespace rbsf::controller {
 namespace {
@@ -38,11 +38,10 @@ ReorientationRequest smallRequest(std::uint32_t seed = 7, double degrees = -15.0
 /// on the plan's own schedule and law (lawSensing: a joint-fed plan gets the joint law
 /// whatever the cell senses), fed the same joints and, every 10th step, the same part
 /// poses, over plan times [0, until].
-void expectTrackRunsThePlansLaw(ReorientationController& c, const planner::Plan& plan,
+void expectTrackRunsThePlansLaw(ReorientationController& c, const plan::Plan& plan,
                                 std::uint64_t id, double until) {
-  const FeedbackSchedule schedule(c.model(), planner::makeReference(plan),
-                                  planner::lawSensing(c.model().cell().sensing, plan),
-                                  plan.simulator);
+  const FeedbackSchedule schedule(c.model(), plan::makeReference(plan),
+                                  plan::lawSensing(c.model().cell().sensing, plan), plan.simulator);
   ControlLaw law(schedule);
   VecU tau, want;
   const double h = plan.simulator.time_step;
@@ -96,8 +95,8 @@ TEST(ReorientationController, PlanCompletesAndSamplingReturnsItsKnots) {
   c.wait();
   ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
   const RequestResult result = c.result();
-  const planner::Plan& plan = result.plan;
-  ASSERT_EQ(plan.status, planner::PlanStatus::kExact);
+  const plan::Plan& plan = result.plan;
+  ASSERT_EQ(plan.status, plan::PlanStatus::kExact);
   // Published with its certificate; the outcome says whether it earned it.
   ASSERT_TRUE(plan.certificate.ran);
   EXPECT_EQ(plan.certificate.trials, 4);
@@ -116,7 +115,7 @@ TEST(ReorientationController, PlanCompletesAndSamplingReturnsItsKnots) {
   // At every knot: the plan's q and v (the reference interpolates through them).
   ReferenceSample ref;
   std::uint64_t id = 0;
-  for (const planner::PlanSample& s : plan.samples) {
+  for (const plan::PlanSample& s : plan.samples) {
     ASSERT_TRUE(c.sample(s.t, ref, &id));
     EXPECT_EQ(id, 1u);
     EXPECT_LE((ref.q - s.q).cwiseAbs().maxCoeff(), 1e-9) << "t = " << s.t;
@@ -124,7 +123,7 @@ TEST(ReorientationController, PlanCompletesAndSamplingReturnsItsKnots) {
   }
   // Inside every segment: its held tau and its simulated phase.
   double t0 = 0.0;
-  for (const planner::PlanSegment& seg : plan.segments) {
+  for (const plan::PlanSegment& seg : plan.segments) {
     ASSERT_TRUE(c.sample(t0 + 0.5 * seg.duration, ref));
     EXPECT_EQ(ref.tau, seg.tau);
     EXPECT_EQ(ref.phase, seg.phase);
@@ -138,8 +137,8 @@ TEST(ReorientationController, SamplingDuringPlanningReturnsThePreviousPlanAndCan
   ASSERT_TRUE(c.plan(smallRequest()));
   c.wait();
   ASSERT_EQ(c.status(), ControllerStatus::kReady);
-  const planner::Plan first = c.result().plan;
-  const ReferenceTrajectory expected = planner::makeReference(first);
+  const plan::Plan first = c.result().plan;
+  const ReferenceTrajectory expected = plan::makeReference(first);
 
   // A request that cannot finish; its progress callback cancels it after one report.
   std::atomic<int> reports{0};
@@ -185,8 +184,8 @@ TEST(ReorientationController, SamplingDuringPlanningReturnsThePreviousPlanAndCan
   c.wait();
   ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
   EXPECT_EQ(c.planId(), 2u);
-  const planner::Plan second = c.result().plan;
-  const planner::PlanSample& last = second.samples.back();
+  const plan::Plan second = c.result().plan;
+  const plan::PlanSample& last = second.samples.back();
   ASSERT_TRUE(c.sample(last.t, got, &id));
   EXPECT_EQ(id, 2u);
   EXPECT_LE((got.q - last.q).cwiseAbs().maxCoeff(), 1e-9);
@@ -220,7 +219,7 @@ TEST(ReorientationController, AutoPlansWithSupportsFirstAndTracksWithTheJointLaw
   c.wait();
   ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
   EXPECT_EQ(c.outcome(), PlanOutcome::kExact);
-  const planner::Plan plan = c.result().plan;
+  const plan::Plan plan = c.result().plan;
   EXPECT_EQ(plan.planner, "support");
   EXPECT_TRUE(plan.joint_feedback);
   EXPECT_TRUE(plan.certificate.certified);

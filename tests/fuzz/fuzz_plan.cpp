@@ -7,13 +7,13 @@
 #include <string>
 
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  rbsf::planner::Plan plan;
+  rbsf::plan::Plan plan;
   try {
-    plan = rbsf::planner::parsePlanJson(text, "<fuzz>");
+    plan = rbsf::plan::parsePlanJson(text, "<fuzz>");
   } catch (const rbsf::InputError&) {
     return 0;
   }
@@ -21,10 +21,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // plan reads back.
   std::string again;
   try {
-    again = rbsf::planner::planJsonText(plan);
+    again = rbsf::plan::planJsonText(plan);
   } catch (const std::runtime_error&) {
     return 0;
   }
-  (void)rbsf::planner::parsePlanJson(again, "<fuzz: written back>");
+  (void)rbsf::plan::parsePlanJson(again, "<fuzz: written back>");
   return 0;
 }

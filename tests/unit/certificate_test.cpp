@@ -11,9 +11,9 @@
 #include "law_support.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/state_layout.h"
-#include "rbsf/planner/certificate.h"
+#include "rbsf/plan/certificate.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 namespace {
 
 const RbsfModel& twoTipsModel() {
@@ -168,4 +168,4 @@ TEST(Certificate, BadSettingsAndAPlanForAnotherCellAreRefused) {
 }
 
 }  // namespace
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

@@ -11,7 +11,7 @@
 #include "law_support.h"
 #include "rbsf/dynamics/sensor_model.h"
 #include "rbsf/dynamics/state_layout.h"
-#include "rbsf/planner/plan_reference.h"
+#include "rbsf/plan/plan_reference.h"
 
 namespace rbsf {
 namespace {
@@ -22,9 +22,8 @@ TEST(FeedbackSchedule, TheLqrGainHoldsABalanceTheOpenLoopLoses) {
   // perturbation on the contacts' manifold decays.
   const RbsfModel model(test::twoTipsCell());
   const VecQ q0 = test::twoTipsConfiguration(model, 0.0);
-  const planner::Plan plan = test::holdPlan(model, q0, 1.0);
-  const FeedbackSchedule schedule(model, planner::makeReference(plan), Sensing{},
-                                  SimulatorSettings{});
+  const plan::Plan plan = test::holdPlan(model, q0, 1.0);
+  const FeedbackSchedule schedule(model, plan::makeReference(plan), Sensing{}, SimulatorSettings{});
   ASSERT_TRUE(schedule.partFeedback());
   const int k = schedule.knotAt(0.5);
   const Eigen::MatrixXd& Ad = schedule.Ad(k);
@@ -50,8 +49,8 @@ TEST(FeedbackSchedule, WithoutPartSensingTheGainIsTheJointServo) {
   Sensing blind;
   blind.part_pose.present = false;
   FeedbackSettings fs;
-  const FeedbackSchedule schedule(model, planner::makeReference(test::holdPlan(model, q0, 0.5)),
-                                  blind, SimulatorSettings{}, fs);
+  const FeedbackSchedule schedule(model, plan::makeReference(test::holdPlan(model, q0, 0.5)), blind,
+                                  SimulatorSettings{}, fs);
   EXPECT_FALSE(schedule.partFeedback());
   const Eigen::MatrixXd& K = schedule.gain(0);
   const int n = model.configDim();
@@ -77,9 +76,8 @@ TEST(ControlLaw, TheEstimateFollowsANominalPlantFromExactSensors) {
   // exact: the estimate stays on the plant.
   const RbsfModel model(test::makeCell(test::ShapeKind::kEllipse, 3));
   const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.4, 0.0}, 0.0);
-  const planner::Plan plan = test::holdPlan(model, q0, 0.5);
-  const FeedbackSchedule schedule(model, planner::makeReference(plan), Sensing{},
-                                  SimulatorSettings{});
+  const plan::Plan plan = test::holdPlan(model, q0, 0.5);
+  const FeedbackSchedule schedule(model, plan::makeReference(plan), Sensing{}, SimulatorSettings{});
   ControlLaw law(schedule);
   SensorModel sensors(Sensing{}, 1e-3, 1, false);
   const Simulator plant(model);
@@ -104,7 +102,7 @@ TEST(ControlLaw, TheEstimateFollowsANominalPlantFromExactSensors) {
 TEST(ControlLaw, APartSampleOlderThanItsHistoryIsDropped) {
   const RbsfModel model(test::makeCell(test::ShapeKind::kEllipse, 3));
   const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.4, 0.0}, 0.0);
-  const FeedbackSchedule schedule(model, planner::makeReference(test::holdPlan(model, q0, 0.5)),
+  const FeedbackSchedule schedule(model, plan::makeReference(test::holdPlan(model, q0, 0.5)),
                                   Sensing{}, SimulatorSettings{});
   ControlLaw law(schedule);
   VecU joints = q0.segment(3, 4), tau;
@@ -127,8 +125,8 @@ TEST(ControlLaw, TheJointServosEstimateFindsAJointsRate) {
   const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.4, 0.0}, 0.0);
   Sensing blind;
   blind.part_pose.present = false;
-  const FeedbackSchedule schedule(model, planner::makeReference(test::holdPlan(model, q0, 0.5)),
-                                  blind, SimulatorSettings{});
+  const FeedbackSchedule schedule(model, plan::makeReference(test::holdPlan(model, q0, 0.5)), blind,
+                                  SimulatorSettings{});
   ControlLaw law(schedule);
   VecU joints = q0.segment(3, 4), tau;
   VecQ q, v;
@@ -150,8 +148,8 @@ TEST(ControlLaw, NoiseFreeEncodersGiveAJointEstimateThatSettles) {
   Sensing exact;
   exact.part_pose.present = false;
   exact.joints.angle_noise = exact.joints.stroke_noise = 0.0;
-  const FeedbackSchedule schedule(model, planner::makeReference(test::holdPlan(model, q0, 0.5)),
-                                  exact, SimulatorSettings{});
+  const FeedbackSchedule schedule(model, plan::makeReference(test::holdPlan(model, q0, 0.5)), exact,
+                                  SimulatorSettings{});
   ControlLaw law(schedule);
   VecU joints = q0.segment(3, 4), tau;
   VecQ q, v;

@@ -11,11 +11,12 @@
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/planner/certificate.h"
+#include "rbsf/plan/certificate.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "sim_test_support.h"
 
 namespace rbsf::planner {
+using namespace rbsf::plan;  // the plan the planner makes
 namespace {
 
 const std::string kDefaultCell = std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml";
@@ -122,7 +123,7 @@ TEST_F(DecisiveModesTest, PlansKeepTheRuleInEveryPropagationStep) {
   ReorientationPlanner rp(model, settings(1));
   Plan plan;
   ASSERT_TRUE(rp.solve(problem(-30.0), plan));
-  ASSERT_EQ(plan.status, planner::PlanStatus::kExact);
+  ASSERT_EQ(plan.status, plan::PlanStatus::kExact);
   const int m = model.numFingers();
   RuleOracle oracle(model, rp.settings().decisive_modes, rp.settings().steps_per_control);
   SimState sim(plan.q0, VecQ::Zero(m + 4));
@@ -148,7 +149,7 @@ TEST_F(DecisiveModesTest, NinetyDegreePlanIsFollowedByTheJointServoToItsEnd) {
   ReorientationPlanner rp(model, settings(2));
   Plan plan;
   ASSERT_TRUE(rp.solve(problem(-90.0), plan));
-  ASSERT_EQ(plan.status, planner::PlanStatus::kExact);
+  ASSERT_EQ(plan.status, plan::PlanStatus::kExact);
   Cell joints_only = model.cell();
   joints_only.sensing.part_pose.present = false;
   const RbsfModel cell(joints_only);

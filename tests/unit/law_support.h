@@ -7,7 +7,7 @@
 #include "rbsf/dynamics/holding.h"
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/rollout.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 #include "test_support.h"
 
 namespace rbsf::test {
@@ -46,8 +46,8 @@ inline VecQ twoTipsConfiguration(const RbsfModel& model, double theta) {
 /// (theta = amplitude sin^2(pi t / T)) with the part's pose asked to stay, so the tips slide
 /// under it (about 1 cm for 1 deg). Made by the part-feedback law on the exact state: the
 /// plan is that closed loop's simulation, in 1 ms segments, a sample every step.
-inline planner::Plan twoTipsPlan(const RbsfModel& model, double amplitude = M_PI / 180,
-                                 double duration = 3.0) {
+inline plan::Plan twoTipsPlan(const RbsfModel& model, double amplitude = M_PI / 180,
+                              double duration = 3.0) {
   const int m = model.numFingers();
   const double h = 1e-3;
   const VecQ q0 = twoTipsConfiguration(model, 0.0);
@@ -72,13 +72,13 @@ inline planner::Plan twoTipsPlan(const RbsfModel& model, double amplitude = M_PI
   const Simulator simulator(model);
   SimulatorWorkspace ws(m);
   SimState state(q0, VecQ::Zero(q0.size()));
-  planner::Plan plan;
-  plan.status = planner::PlanStatus::kExact;
+  plan::Plan plan;
+  plan.status = plan::PlanStatus::kExact;
   plan.planner = "test: the part-feedback law on the exact state";
   plan.q0 = q0;
   plan.start = {q0[0], q0[1], q0[2]};
   auto sample = [&](const SimState& s, const VecU& tau, const StepReport* r) {
-    planner::PlanSample x;
+    plan::PlanSample x;
     x.t = s.t;
     x.q = s.q;
     x.v = s.v;
@@ -96,7 +96,7 @@ inline planner::Plan twoTipsPlan(const RbsfModel& model, double amplitude = M_PI
         return true;
       },
       [&](const SimState& s, const StepReport& r, const VecU& tau, long) {
-        planner::PlanSegment seg;
+        plan::PlanSegment seg;
         seg.phase = r.phase == Phase::kC || r.phase == Phase::kP ? r.phase : Phase::kU;
         seg.steps = 1;
         seg.duration = h;
@@ -111,21 +111,21 @@ inline planner::Plan twoTipsPlan(const RbsfModel& model, double amplitude = M_PI
 
 /// A plan that holds the part at rest at q0 for `duration` with the holding torques (two
 /// samples, one segment).
-inline planner::Plan holdPlan(const RbsfModel& model, const VecQ& q0, double duration) {
+inline plan::Plan holdPlan(const RbsfModel& model, const VecQ& q0, double duration) {
   ModelData data(model.numFingers());
   model.updateContacts(q0, data);
-  planner::Plan plan;
-  plan.status = planner::PlanStatus::kExact;
+  plan::Plan plan;
+  plan.status = plan::PlanStatus::kExact;
   plan.q0 = q0;
   plan.start = plan.goal = {q0[0], q0[1], q0[2]};
-  planner::PlanSegment seg;
+  plan::PlanSegment seg;
   seg.phase = Phase::kC;
   seg.steps = static_cast<int>(std::lround(duration / plan.simulator.time_step));
   seg.duration = duration;
   seg.tau = holdingTorques(model, q0, data).tau;
   plan.segments.push_back(seg);
   for (double t : {0.0, duration}) {
-    planner::PlanSample s;
+    plan::PlanSample s;
     s.t = t;
     s.q = q0;
     s.v = VecQ::Zero(q0.size());

@@ -13,7 +13,7 @@
 
 #include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 #include "rbsf/tools/interrupt.h"
 
 namespace rbsf::tools {
@@ -89,46 +89,46 @@ TEST(InterruptDeathTest, SecondSigintExitsAtOnceWithStatus130) {
       ::testing::ExitedWithCode(kExitInterrupted), "^$");
 }
 
-planner::Plan tinyPlan() {
-  planner::Plan p;
-  p.status = planner::PlanStatus::kApproximate;
+plan::Plan tinyPlan() {
+  plan::Plan p;
+  p.status = plan::PlanStatus::kApproximate;
   p.planner = "KPIECE1";
   p.seed = 3;
   p.planning_time = 1.25;
   p.q0 = VecQ::Zero(7);
   p.q0[1] = 0.4;
-  planner::PlanSegment s;
+  plan::PlanSegment s;
   s.steps = 20, s.duration = 0.02, s.tau = VecU::Constant(4, 1.5);
   p.segments.push_back(s);
-  planner::PlanSample a;
+  plan::PlanSample a;
   a.t = 0.0, a.q = p.q0, a.v = VecQ::Zero(7), a.tau = s.tau, a.f_n = VecC::Constant(3, 2.0);
   p.samples.push_back(a);
   return p;
 }
 
 TEST(PlanFile, ReproducibleTextLeavesPlanningTimeOutAndStillParses) {
-  const planner::Plan p = tinyPlan();
-  const std::string full = planner::planJsonText(p);
+  const plan::Plan p = tinyPlan();
+  const std::string full = plan::planJsonText(p);
   EXPECT_NE(full.find("\"planning_time\""), std::string::npos);
-  planner::PlanFileOptions o;
+  plan::PlanFileOptions o;
   o.wall_clock = false;
-  const std::string repro = planner::planJsonText(p, o);
+  const std::string repro = plan::planJsonText(p, o);
   EXPECT_EQ(repro.find("planning_time"), std::string::npos);
-  const planner::Plan back = planner::parsePlanJson(repro, "<text>");
+  const plan::Plan back = plan::parsePlanJson(repro, "<text>");
   EXPECT_EQ(back.planning_time, 0.0);
   EXPECT_EQ(back.seed, 3u);
   EXPECT_TRUE(back.samples.front().f_n == p.samples.front().f_n);
-  EXPECT_EQ(planner::parsePlanJson(full, "<text>").planning_time, 1.25);
+  EXPECT_EQ(plan::parsePlanJson(full, "<text>").planning_time, 1.25);
   // Text and file readers agree.
-  EXPECT_EQ(planner::planJsonText(back, o), repro);
+  EXPECT_EQ(plan::planJsonText(back, o), repro);
 }
 
 TEST(PlanFile, OutOfRangeIntegersAndNonFiniteNumbersAreInputErrors) {
   // Found with tests/fuzz/fuzz_plan.cpp under UBSan: a float or out-of-range value was cast to
   // int / uint32 / uint64 (undefined behaviour), a negative seed wrapped around; a zero step
   // count or time step was accepted; an over-long array overran a fixed-capacity vector.
-  const nlohmann::json good = nlohmann::json::parse(planner::planJsonText(tinyPlan()));
-  ASSERT_NO_THROW(planner::parsePlanJson(good.dump(), "<good>"));
+  const nlohmann::json good = nlohmann::json::parse(plan::planJsonText(tinyPlan()));
+  ASSERT_NO_THROW(plan::parsePlanJson(good.dump(), "<good>"));
   struct Case {
     std::string edit, needle;
   };
@@ -161,7 +161,7 @@ TEST(PlanFile, OutOfRangeIntegersAndNonFiniteNumbersAreInputErrors) {
   };
   for (const auto& [text, needle] : cases) {
     try {
-      planner::parsePlanJson(text, "<case>");
+      plan::parsePlanJson(text, "<case>");
       ADD_FAILURE() << "accepted: " << needle;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();

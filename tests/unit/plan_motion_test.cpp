@@ -9,11 +9,11 @@
 
 #include "law_support.h"
 #include "rbsf/dynamics/state_layout.h"
-#include "rbsf/planner/certificate.h"
-#include "rbsf/planner/plan_holding.h"
-#include "rbsf/planner/plan_motion.h"
+#include "rbsf/plan/certificate.h"
+#include "rbsf/plan/plan_holding.h"
+#include "rbsf/plan/plan_motion.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 namespace {
 
 /// A plan with samples at t = 0, 1, 2 whose part velocities are given (m = 3).
@@ -117,4 +117,4 @@ TEST(PlanHolding, APartSlidingOnTwoFrictionlessTipsIsNotHeldByTheJointsAndTheJoi
 }
 
 }  // namespace
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

@@ -11,13 +11,14 @@
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/state_layout.h"
+#include "rbsf/plan/plan_reference.h"
 #include "rbsf/planner/goal.h"
-#include "rbsf/planner/plan_reference.h"
 #include "rbsf/planner/planner_setup.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/planner/state_space.h"
 
 namespace rbsf::planner {
+using namespace rbsf::plan;  // the plan the planner makes
 namespace {
 
 const std::string kDefaultCell = std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml";
@@ -45,7 +46,7 @@ TEST_F(PlannerTest, SmallProblemSolvedExactlyAndReproducedByResimulation) {
   ReorientationPlanner planner(model, testSettings(7));
   Plan plan;
   ASSERT_TRUE(planner.solve(smallProblem(), plan));
-  ASSERT_EQ(plan.status, planner::PlanStatus::kExact);
+  ASSERT_EQ(plan.status, plan::PlanStatus::kExact);
   EXPECT_LE(plan.goal_distance, 1.0);
   ASSERT_FALSE(plan.segments.empty());
   // The planner's own tree states equal the re-simulation of its controls.
@@ -139,7 +140,7 @@ TEST_F(PlannerTest, SameSeedSamePlan) {
     ReorientationPlanner planner(model, testSettings(3));
     ASSERT_TRUE(planner.solve(smallProblem(), b));
   }
-  ASSERT_EQ(a.status, planner::PlanStatus::kExact);
+  ASSERT_EQ(a.status, plan::PlanStatus::kExact);
   ASSERT_EQ(a.segments.size(), b.segments.size());
   for (size_t k = 0; k < a.segments.size(); ++k) {
     EXPECT_EQ(a.segments[k].steps, b.segments[k].steps);

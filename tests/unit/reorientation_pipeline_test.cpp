@@ -11,10 +11,11 @@
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/planner/plan_holding.h"
+#include "rbsf/plan/plan_holding.h"
 #include "rbsf/planner/reorientation_pipeline.h"
 
 namespace rbsf::planner {
+using namespace rbsf::plan;  // the plan the planner makes
 namespace {
 
 Cell defaultCell() { return loadCell(std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml"); }

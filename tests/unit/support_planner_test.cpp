@@ -9,12 +9,13 @@
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/state_layout.h"
-#include "rbsf/planner/plan_holding.h"
-#include "rbsf/planner/plan_motion.h"
+#include "rbsf/plan/plan_holding.h"
+#include "rbsf/plan/plan_motion.h"
 #include "rbsf/planner/support_planner.h"
 #include "rbsf/planner/support_trajectory.h"
 
 namespace rbsf::planner {
+using namespace rbsf::plan;  // the plan the planner makes
 namespace {
 
 const RbsfModel& defaultModel() {
@@ -114,7 +115,7 @@ TEST(SupportTrajectory, ThePlanIsExactSlowJointFedBackAndEndsAtRestOnTheGoal) {
 
   const Plan plan = closedLoopPlan(model, ref, SimulatorSettings{}, FeedbackSettings{}, kTurn15,
                                    0.01, 2.0 * M_PI / 180, 10);
-  EXPECT_EQ(plan.status, planner::PlanStatus::kExact);
+  EXPECT_EQ(plan.status, plan::PlanStatus::kExact);
   EXPECT_TRUE(plan.joint_feedback);
   const PlanSample& last = plan.samples.back();
   EXPECT_LT(std::hypot(last.v[layout::kX], last.v[layout::kY]), 1e-3);

@@ -21,13 +21,13 @@ namespace {
 using ModeKey = std::array<int, kMaxFingers>;
 
 // Each segment's majority contact modes, by a re-simulation of the plan written here.
-std::vector<ModeKey> segmentModes(const RbsfModel& model, const planner::Plan& plan) {
+std::vector<ModeKey> segmentModes(const RbsfModel& model, const plan::Plan& plan) {
   const Simulator sim(model, plan.simulator);
   SimulatorWorkspace ws(model.numFingers());
   StepReport report;
   SimState state(plan.q0, VecQ::Zero(plan.q0.size()));
   std::vector<ModeKey> out;
-  for (const planner::PlanSegment& seg : plan.segments) {
+  for (const plan::PlanSegment& seg : plan.segments) {
     std::array<std::array<int, 3>, kMaxFingers> count{};
     for (int k = 0; k < seg.steps; ++k) {
       sim.step(state, seg.tau, ws, &report);
@@ -45,7 +45,7 @@ std::vector<ModeKey> segmentModes(const RbsfModel& model, const planner::Plan& p
 
 TEST(TrajoptSchedule, SplitRunsHoldOnePhaseAndOneSimulatedModePerContact) {
   const RbsfModel& model = test::defaultModel();
-  const planner::Plan& plan = test::shortPlan();
+  const plan::Plan& plan = test::shortPlan();
   Schedule split, letters;
   std::string why;
   ASSERT_TRUE(buildSchedule(model, plan, 60, true, split, why)) << why;

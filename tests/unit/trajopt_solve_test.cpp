@@ -39,7 +39,7 @@ class TrajoptSolve : public ::testing::Test {
 OptimizedPlan* TrajoptSolve::result_ = nullptr;
 
 TEST_F(TrajoptSolve, ConvergesAndLowersTheEffort) {
-  const planner::OptimizationSummary& o = result_->plan.optimization;
+  const plan::OptimizationSummary& o = result_->plan.optimization;
   ASSERT_TRUE(result_->success) << o.status << ": " << o.message;
   EXPECT_TRUE(o.ran);
   EXPECT_TRUE(o.status == "Solve_Succeeded" || o.status == "Solved_To_Acceptable_Level");
@@ -54,14 +54,14 @@ TEST_F(TrajoptSolve, ConvergesAndLowersTheEffort) {
 TEST_F(TrajoptSolve, SolutionIsPhysical) {
   ASSERT_TRUE(result_->success);
   const RbsfModel& model = test::defaultModel();
-  const planner::Plan& out = result_->plan;
-  const planner::Plan& in = test::shortPlan();
+  const plan::Plan& out = result_->plan;
+  const plan::Plan& in = test::shortPlan();
   const int m = model.numFingers();
   ASSERT_EQ(out.samples.size(), out.segments.size() + 1);
   // Start = q0 at rest; end = goal pose at rest.
   EXPECT_LT((out.samples.front().q - in.q0).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_LT(out.samples.front().v.cwiseAbs().maxCoeff(), 1e-9);
-  const planner::PlanSample& last = out.samples.back();
+  const plan::PlanSample& last = out.samples.back();
   EXPECT_NEAR(last.q[layout::kX], in.goal.x, 1e-6);
   EXPECT_NEAR(last.q[layout::kY], in.goal.y, 1e-6);
   EXPECT_NEAR(std::remainder(last.q[layout::kPhi] - in.goal.phi, 2 * M_PI), 0.0, 1e-6);
@@ -76,7 +76,7 @@ TEST_F(TrajoptSolve, SolutionIsPhysical) {
     t += out.segments[k].duration;
   }
   const Cell& cell = model.cell();
-  for (const planner::PlanSample& s : out.samples) {
+  for (const plan::PlanSample& s : out.samples) {
     for (int i = 0; i < m; ++i) EXPECT_GE(s.f_n[i], -1e-6);
     EXPECT_GE(s.q[layout::kTheta], cell.base.theta_min - 1e-6);
     EXPECT_LE(s.q[layout::kTheta], cell.base.theta_max + 1e-6);
@@ -95,7 +95,7 @@ TEST_F(TrajoptSolve, DynamicsAndConesHoldByRbsfModel) {
   // 1/2 (M_k + M_k+1) (v_k+1 - v_k) = h/2 (r_k + r_k+1).
   ASSERT_TRUE(result_->success);
   const RbsfModel& model = test::defaultModel();
-  const planner::Plan& out = result_->plan;
+  const plan::Plan& out = result_->plan;
   const int m = model.numFingers();
   const TrajectoryProblem p(model, test::shortPlan(), testSettings());
   const double weight = model.cell().object.mass * model.cell().gravity;
@@ -103,7 +103,7 @@ TEST_F(TrajoptSolve, DynamicsAndConesHoldByRbsfModel) {
   ModelData data(m);
   // r at knot e with its forces; checks contacts and cones on the way.
   auto rhs = [&](std::size_t e, VecQ& r, MatQQ& M) {
-    const planner::PlanSample& s = out.samples[e];
+    const plan::PlanSample& s = out.samples[e];
     const VecC& f_n = s.f_n;
     const VecC& f_t = result_->f_t[e];
     model.updateContacts(s.q, data);
@@ -131,7 +131,7 @@ TEST_F(TrajoptSolve, DynamicsAndConesHoldByRbsfModel) {
   VecQ r0, r1;
   MatQQ M0, M1;
   for (std::size_t k = 0; k + 1 < out.samples.size(); ++k) {
-    const planner::PlanSample &a = out.samples[k], &b = out.samples[k + 1];
+    const plan::PlanSample &a = out.samples[k], &b = out.samples[k + 1];
     rhs(k, r0, M0);
     rhs(k + 1, r1, M1);
     const double h = b.t - a.t;
@@ -174,7 +174,7 @@ TEST(TrajoptFailure, IterationLimitKeepsTheInputPlan) {
   const PlanOptimizer opt(test::defaultModel(), s);
   const OptimizedPlan out = opt.optimize(test::shortPlan());
   EXPECT_FALSE(out.success);
-  const planner::OptimizationSummary& o = out.plan.optimization;
+  const plan::OptimizationSummary& o = out.plan.optimization;
   EXPECT_TRUE(o.ran);
   EXPECT_EQ(o.status, "Maximum_Iterations_Exceeded");
   EXPECT_NE(o.message.find("planner's plan is kept"), std::string::npos) << o.message;
@@ -252,7 +252,7 @@ TEST(TrajoptRefinement, AFailedSolveIsRetriedOnceWithAMinimumSlipRate) {
   OptimizerSettings s = testSettings();
   s.max_iterations = 1;
   const PlanOptimizer opt(test::defaultModel(), s);
-  const planner::Plan& plan = test::shortPlan();
+  const plan::Plan& plan = test::shortPlan();
   RefineSettings few;
   few.certificate.trials = 4;
   const RefineOutcome twice = refinePlan(opt, plan, few);
@@ -278,7 +278,7 @@ TEST(TrajoptRefinement, TheBetterCertificateIsWritten) {
   // A converged refinement is certified beside the planner's plan, and the plan written
   // carries the certificate of the one chosen: never fewer successes than the other's.
   const PlanOptimizer opt(test::defaultModel(), testSettings());
-  const planner::Plan& plan = test::shortPlan();
+  const plan::Plan& plan = test::shortPlan();
   RefineSettings few;
   few.certificate.trials = 4;
   few.retry_min_slip_rate = 0.0;
@@ -311,7 +311,7 @@ TEST(TrajoptFailure, TooFewKnotsForThePhaseRunsIsReported) {
 
 TEST(TrajoptFailure, InfeasibleGoalIsReportedAndThePlanKept) {
   // A goal 1 m away cannot be reached within the strokes: Ipopt fails, the plan is kept.
-  planner::Plan far = test::shortPlan();
+  plan::Plan far = test::shortPlan();
   far.goal.x += 1.0;
   OptimizerSettings s = testSettings();
   s.knots = 20;
@@ -336,7 +336,7 @@ TEST(TrajoptFailure, BadSettingsAndMismatchedPlansThrow) {
   s = OptimizerSettings{};
   s.duration_max_scale = 0.5;
   EXPECT_THROW(PlanOptimizer(test::defaultModel(), s), InputError);
-  planner::Plan bad = test::shortPlan();
+  plan::Plan bad = test::shortPlan();
   bad.q0 = VecQ::Zero(3);
   EXPECT_THROW(PlanOptimizer(test::defaultModel()).optimize(bad), InputError);
 }

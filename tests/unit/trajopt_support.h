@@ -15,8 +15,8 @@ inline const RbsfModel& defaultModel() {
 }
 
 /// \brief The planner's plan of a 15 degree turn (seed 5: phases C, P, U), planned once.
-inline const planner::Plan& shortPlan() {
-  static const planner::Plan plan = [] {
+inline const plan::Plan& shortPlan() {
+  static const plan::Plan plan = [] {
     planner::PlannerSettings s;
     s.seed = 5;
     s.time_limit = 120.0;
@@ -24,7 +24,7 @@ inline const planner::Plan& shortPlan() {
     planner::Problem p;
     p.start = {0.1, 0.40, 0.0};
     p.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
-    planner::Plan out;
+    plan::Plan out;
     if (!planner.solve(p, out)) throw std::runtime_error("planner failed on the 15 degree turn");
     return out;
   }();

@@ -120,7 +120,7 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
     if (std::isfinite(setup.goal->bestDistance()))
       run["best goal distance REAL"] = num(setup.goal->bestDistance());
     if (!pdef->hasExactSolution()) return;
-    planner::Plan plan;
+    plan::Plan plan;
     if (!rp.makePlan(bp.problem, setup, time, plan)) return;
     run["solution duration REAL"] = num(plan.duration());
     run["path mismatch REAL"] = num(plan.path_mismatch);
@@ -129,7 +129,7 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
     // certify the planner's plan and the refinement, keep the better (plan_refinement.h).
     const trajopt::PlanOptimizer optimizer(model);
     const trajopt::RefineOutcome out = trajopt::refinePlan(optimizer, plan);
-    const planner::OptimizationSummary& o = out.plan.optimization;
+    const plan::OptimizationSummary& o = out.plan.optimization;
     run["optimizer success BOOLEAN"] = out.converged ? "1" : "0";
     run["optimizer status ENUM"] = optimizerStatusIndex(o.status);
     run["optimizer iterations INTEGER"] = std::to_string(o.iterations);

@@ -53,8 +53,7 @@ bool PlanOutputs::any() const {
   return !o_.json.empty() || !o_.csv.empty() || !o_.svg.empty() || !o_.report.empty();
 }
 
-std::vector<TrajectorySample> PlanOutputs::frames(const RbsfModel& model,
-                                                  const planner::Plan& plan) {
+std::vector<TrajectorySample> PlanOutputs::frames(const RbsfModel& model, const plan::Plan& plan) {
   if (!plan.samples.empty()) return plan.samples;  // a plan's samples are trajectory samples
   const int m = model.numFingers();                // no motion: the part at rest at the start
   TrajectorySample f;
@@ -66,17 +65,17 @@ std::vector<TrajectorySample> PlanOutputs::frames(const RbsfModel& model,
   return {f};
 }
 
-void PlanOutputs::write(const RbsfModel& model, const planner::Plan& plan) const {
-  planner::PlanFileOptions file;
+void PlanOutputs::write(const RbsfModel& model, const plan::Plan& plan) const {
+  plan::PlanFileOptions file;
   file.wall_clock = !o_.reproducible;
   std::vector<std::pair<std::string, std::string>> texts;  // path, text: all formatted first
-  if (!o_.json.empty()) texts.emplace_back(o_.json, planner::planJsonText(plan, file));
-  if (!o_.csv.empty()) texts.emplace_back(o_.csv, planner::planCsvText(plan));
+  if (!o_.json.empty()) texts.emplace_back(o_.json, plan::planJsonText(plan, file));
+  if (!o_.csv.empty()) texts.emplace_back(o_.csv, plan::planCsvText(plan));
   if (!o_.svg.empty() || !o_.report.empty()) {
     SvgAnimationOptions a;
     a.title = "plan-reorientation: " + o_.cell_label;
-    a.subtitle = std::string(planner::toString(plan.status)) + " plan from " +
-                 poseText(plan.start) + " to " + poseText(plan.goal) + " (dashed)";
+    a.subtitle = std::string(plan::toString(plan.status)) + " plan from " + poseText(plan.start) +
+                 " to " + poseText(plan.goal) + " (dashed)";
     a.goal = plan.goal;
     a.still_time = o_.svg_still;
     if (!o_.svg.empty())
@@ -84,7 +83,7 @@ void PlanOutputs::write(const RbsfModel& model, const planner::Plan& plan) const
     if (!o_.report.empty()) {
       std::vector<std::pair<std::string, std::string>> rows = {
           {"cell", o_.cell_label},
-          {"status", std::string(planner::toString(plan.status))},
+          {"status", std::string(plan::toString(plan.status))},
           {"start",
            poseText(plan.start) + format(", base %.1f deg", plan.start_theta * 180 / M_PI)},
           {"goal", poseText(plan.goal)},
@@ -99,9 +98,9 @@ void PlanOutputs::write(const RbsfModel& model, const planner::Plan& plan) const
       if (file.wall_clock) rows.emplace_back("planning time", format("%.3f s", plan.planning_time));
       ReportVerdict verdict;
       if (plan.certificate.ran) {
-        const planner::Certificate& c = plan.certificate;
-        verdict = {true, c.certified, planner::verdictText(c),
-                   "Law: " + c.law + ". Worst " + planner::worstTrialText(c) + "."};
+        const plan::Certificate& c = plan.certificate;
+        verdict = {true, c.certified, plan::verdictText(c),
+                   "Law: " + c.law + ". Worst " + plan::worstTrialText(c) + "."};
         rows.emplace_back("certificate",
                           format("%.0f trials, seed %.0f, %.0f %% required", c.trials,
                                  static_cast<double>(c.seed), 100.0 * c.required_rate));

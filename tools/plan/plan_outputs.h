@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "rbsf/dynamics/model.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 #include "rbsf/tools/trajectory_writer.h"
 
 namespace rbsf::tools {
@@ -42,10 +42,10 @@ class PlanOutputs {
 
   /// \brief Format every requested file, then write each atomically.
   /// \throws std::runtime_error for a NaN in the plan, InputError for an I/O failure.
-  void write(const RbsfModel& model, const planner::Plan& plan) const;
+  void write(const RbsfModel& model, const plan::Plan& plan) const;
 
   /// \brief The plan's samples as drawn (the start q0 alone when the plan has none).
-  static std::vector<TrajectorySample> frames(const RbsfModel& model, const planner::Plan& plan);
+  static std::vector<TrajectorySample> frames(const RbsfModel& model, const plan::Plan& plan);
 
  private:
   PlanOutputOptions o_;

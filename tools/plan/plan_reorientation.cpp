@@ -3,7 +3,7 @@
 // (rbsf/planner/reorientation_pipeline.h): the support planner, then the kinodynamic
 // planner seed after seed; each exact kinodynamic plan refined by the trajectory optimiser
 // unless --no-optimize (rbsf/trajopt/plan_refinement.h); every plan run --trials times
-// closed loop under the cell's sensing and uncertainty (rbsf/planner/certificate.h). The
+// closed loop under the cell's sensing and uncertainty (rbsf/plan/certificate.h). The
 // first certified plan is written, else the best one, marked not certified.
 //
 // Exit status: 0 a certified plan written; 4 an exact plan written but not certified
@@ -23,7 +23,7 @@
 
 #include "plan_outputs.h"
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/planner/certificate.h"
+#include "rbsf/plan/certificate.h"
 #include "rbsf/planner/reorientation_pipeline.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
@@ -47,11 +47,11 @@ struct Options {
 
 /// The optimiser's line: which solve, how it went, and whether its plan was chosen.
 void printOptimisation(const trajopt::RefineOutcome& r) {
-  const planner::OptimizationSummary& o = r.plan.optimization;
+  const plan::OptimizationSummary& o = r.plan.optimization;
   const char* which = r.attempts < 2 ? "" : (r.refined ? " (the retry)" : " (first of 2 solves)");
   std::printf("optimisation%s: %s, %d iterations, %.3f s, cost %.6g -> %.6g\n", which,
               o.status.c_str(), o.iterations, o.solve_time, o.cost_before, o.cost_after);
-  std::printf("planner's plan: %s\n", planner::verdictText(r.planner_certificate).c_str());
+  std::printf("planner's plan: %s\n", plan::verdictText(r.planner_certificate).c_str());
   if (o.refined_success_rate >= 0.0)
     std::printf("optimised plan: %.0f %% of the trials succeeded\n",
                 100.0 * o.refined_success_rate);
@@ -61,16 +61,16 @@ void printOptimisation(const trajopt::RefineOutcome& r) {
 
 /// Where a plan leaves the part: "ends 0.123 m and 35.2 deg from the goal" (with "drops the
 /// part: it " before it when no contact carries the part at the end).
-std::string endText(const planner::Plan& plan, const planner::Problem& problem) {
+std::string endText(const plan::Plan& plan, const planner::Problem& problem) {
   if (plan.samples.empty() || !plan.samples.back().q.allFinite()) return "loses the part";
-  const planner::PlanSample& end = plan.samples.back();
+  const plan::PlanSample& end = plan.samples.back();
   return std::string(end.f_n.maxCoeff() > 0.0 ? "" : "drops the part: it ") + "ends " +
          goalDistanceText(end.q, problem.goal, problem.absolute_angle);
 }
 
 /// The certificate of the plan written: verdict, law and worst trial, in metres and degrees.
-void printCertificate(const planner::Certificate& c) {
-  std::fputs(planner::certificateReportText(c).c_str(), stdout);
+void printCertificate(const plan::Certificate& c) {
+  std::fputs(plan::certificateReportText(c).c_str(), stdout);
 }
 
 int run(int argc, char** argv) {
@@ -174,7 +174,7 @@ int run(int argc, char** argv) {
   opt_settings.tolerance = parseNumber(o.optimize_tolerance, "--optimize-tolerance");
   if (!(opt_settings.tolerance > 0.0 && opt_settings.tolerance <= 1.0))
     throw InputError("--optimize-tolerance: must be in (0, 1] (got " + o.optimize_tolerance + ")");
-  planner::CertificateSettings& certificate = pipeline.certificate;
+  plan::CertificateSettings& certificate = pipeline.certificate;
   certificate.trials = static_cast<int>(parseInteger(o.trials, "--trials", 1, 100000));
   certificate.seed =
       static_cast<std::uint64_t>(parseInteger(o.trial_seed, "--trial-seed", 1, 1LL << 53));
@@ -220,13 +220,13 @@ int run(int argc, char** argv) {
     pipeline.refine = trajopt::refinementStep(optimizer, [](const trajopt::RefineOutcome& r) {
       if (!InterruptFlag::raised()) printOptimisation(r);
     });
-  pipeline.on_found = [](const planner::PipelineAttempt& a, const planner::Plan& plan) {
+  pipeline.on_found = [](const planner::PipelineAttempt& a, const plan::Plan& plan) {
     if (a.method == "support")
       std::printf(
           "support path: sticking forces within %.2f of the friction cone, %ld "
           "expansions\n",
           a.friction_use, a.expansions);
-    if (plan.status != planner::PlanStatus::kExact) return;
+    if (plan.status != plan::PlanStatus::kExact) return;
     std::printf(
         "exact plan: %zu segments, %.3f s of motion, phases %s; planned in %.3f s, %llu "
         "propagations\n",
@@ -235,7 +235,7 @@ int run(int argc, char** argv) {
     if (a.method == "support")
       std::printf("optimisation: not run (support plans are not refined yet)\n");
   };
-  pipeline.on_attempt = [](const planner::PipelineAttempt& a, const planner::Plan&) {
+  pipeline.on_attempt = [](const planner::PipelineAttempt& a, const plan::Plan&) {
     if (!a.found && a.method == "support")
       std::printf("no support path: %s (%ld expansions)\n", a.note.c_str(), a.expansions);
     else if (!a.found)
@@ -245,7 +245,7 @@ int run(int argc, char** argv) {
   };
   planner::ReorientationPipeline run(model, pipeline);
   planner::PipelineOutcome result = run.run(problem);  // bad problem: exit 2 before any search
-  planner::Plan& plan = result.plan;
+  plan::Plan& plan = result.plan;
   const bool found = result.chosen >= 0;
   const std::string method = found ? result.attempts[result.chosen].method : "";
   if (found && result.attempts.size() > 1)
@@ -273,7 +273,7 @@ int run(int argc, char** argv) {
     case planner::PipelineStatus::kNotCertified:
       outputs.write(model, plan);
       std::fprintf(stderr, "plan-reorientation: the plan written is %s\n",
-                   planner::verdictText(plan.certificate).c_str());
+                   plan::verdictText(plan.certificate).c_str());
       return kExitNotCertified;
     case planner::PipelineStatus::kNoPlan:
       std::printf("no plan within %.3g s\n", settings.time_limit);

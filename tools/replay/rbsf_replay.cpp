@@ -1,4 +1,4 @@
-// rbsf-replay: the certificate of a plan on a cell (rbsf/planner/certificate.h): the plan
+// rbsf-replay: the certificate of a plan on a cell (rbsf/plan/certificate.h): the plan
 // replayed --trials times in closed loop under the cell's sensing and uncertainty, judged
 // by outcome. The cell may differ from the one the plan was made for (the parameters
 // measured on the real cell); on the planning cell, with the certificate's seed and
@@ -16,7 +16,7 @@
 #include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/trajectory_sample.h"
-#include "rbsf/planner/certificate.h"
+#include "rbsf/plan/certificate.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
 #include "rbsf/tools/run_files.h"
@@ -53,7 +53,7 @@ int run(int argc, char** argv) {
   app.add_option("--csv", csv, "write the worst trial's trajectory as CSV (every step)");
   parseCommandLine(app, argc, argv);
 
-  planner::CertificateSettings settings;
+  plan::CertificateSettings settings;
   settings.trials = static_cast<int>(parseInteger(trials_text, "--trials", 1, 100000));
   settings.seed = static_cast<std::uint64_t>(parseInteger(seed_text, "--seed", 1, 1LL << 53));
   settings.open_loop = open_loop;
@@ -64,35 +64,35 @@ int run(int argc, char** argv) {
   files.addOutput(csv, "--csv");
 
   const RbsfModel model(loadCell(cell));
-  const planner::Plan plan = planner::readPlanJson(plan_path);
+  const plan::Plan plan = plan::readPlanJson(plan_path);
   if (plan.q0.size() != model.configDim())
     throw InputError("--plan: the plan is for " + std::to_string(plan.q0.size() - 4) +
                      " fingers; the cell " + cell + " has " + std::to_string(model.numFingers()));
   const std::atomic<bool>& cancel = InterruptFlag::install();
-  const planner::Certificate c = planner::certify(model, plan, settings, nullptr, &cancel);
+  const plan::Certificate c = plan::certify(model, plan, settings, nullptr, &cancel);
   if (InterruptFlag::raised()) {
     std::printf("interrupted: nothing written\n");
     return InterruptFlag::exitStatus();
   }
   std::printf("plan %s on cell %s\n", plan_path.c_str(), cell.c_str());
-  std::fputs(planner::certificateReportText(c).c_str(), stdout);
+  std::fputs(plan::certificateReportText(c).c_str(), stdout);
 
   // Everything is formatted before any file is written.
   std::string csv_text;
   if (!csv.empty()) {
     std::vector<TrajectorySample> trace;
-    planner::traceTrial(model, plan, settings, c.worst.index, trace);
+    plan::traceTrial(model, plan, settings, c.worst.index, trace);
     csv_text = trajectoryCsvText(trace, model.numFingers());
   }
   if (!out.empty()) {
     nlohmann::json j = {{"plan", plan_path}, {"cell", cell}};
-    j["certificate"] = nlohmann::json::parse(planner::certificateJsonText(c));
+    j["certificate"] = nlohmann::json::parse(plan::certificateJsonText(c));
     requireFinite(j, "the certificate");
     writeFileAtomically(out, j.dump(1) + "\n", "--out");
   }
   if (!csv.empty()) writeFileAtomically(csv, csv_text, "--csv");
   if (c.certified) return 0;
-  std::fprintf(stderr, "rbsf-replay: %s\n", planner::verdictText(c).c_str());
+  std::fprintf(stderr, "rbsf-replay: %s\n", plan::verdictText(c).c_str());
   return kExitNotCertified;
 }
 

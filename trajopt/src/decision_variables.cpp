@@ -10,7 +10,7 @@
 namespace rbsf::trajopt {
 
 DecisionVariables::DecisionVariables(const RbsfModel& model, const DecisionLayout& layout,
-                                     const Schedule& schedule, const planner::Plan& plan,
+                                     const Schedule& schedule, const plan::Plan& plan,
                                      const OptimizerSettings& settings)
     : model_(model),
       layout_(layout),
@@ -129,8 +129,8 @@ Eigen::VectorXd DecisionVariables::initialGuess() const {
     z.segment(layout_.ft(k), m) = impulse_t.col(k) / share;
     // tau: the segment that is held from t on.
     double seg_start = 0.0;
-    const planner::PlanSegment* seg = &plan_.segments.back();
-    for (const planner::PlanSegment& sg : plan_.segments) {
+    const plan::PlanSegment* seg = &plan_.segments.back();
+    for (const plan::PlanSegment& sg : plan_.segments) {
       if (tk < seg_start + sg.duration - 1e-12) {
         seg = &sg;
         break;

@@ -62,7 +62,7 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw InputError("optimizer setting " + what);
 }
 
-void checkPlan(const RbsfModel& model, const planner::Plan& plan) {
+void checkPlan(const RbsfModel& model, const plan::Plan& plan) {
   const int n = model.configDim(), nu = model.controlDim(), m = model.numFingers();
   auto bad = [](const std::string& what) {
     throw InputError("plan does not fit the cell: " + what);
@@ -75,7 +75,7 @@ void checkPlan(const RbsfModel& model, const planner::Plan& plan) {
       bad("segments[" + std::to_string(s) + "] has a tau of the wrong size or no duration");
   if (plan.samples.empty()) bad("it has no samples");
   for (std::size_t s = 0; s < plan.samples.size(); ++s) {
-    const planner::PlanSample& p = plan.samples[s];
+    const plan::PlanSample& p = plan.samples[s];
     if (p.q.size() != n || p.v.size() != n || p.f_n.size() != m)
       bad("samples[" + std::to_string(s) + "] has vectors of the wrong size");
   }
@@ -103,12 +103,12 @@ PlanOptimizer::PlanOptimizer(const RbsfModel& model, OptimizerSettings settings)
   require(s.print_level >= 0 && s.print_level <= 12, "print_level must be in [0, 12]");
 }
 
-OptimizedPlan PlanOptimizer::optimize(const planner::Plan& plan) const {
+OptimizedPlan PlanOptimizer::optimize(const plan::Plan& plan) const {
   checkPlan(model_, plan);
   OptimizedPlan out;
   out.plan = plan;
-  planner::OptimizationSummary& summary = out.plan.optimization;
-  summary = planner::OptimizationSummary{};
+  plan::OptimizationSummary& summary = out.plan.optimization;
+  summary = plan::OptimizationSummary{};
   summary.ran = true;
   summary.cost_before = planEffort(model_, plan);
   const auto start = std::chrono::steady_clock::now();
@@ -174,7 +174,7 @@ OptimizedPlan PlanOptimizer::optimize(const planner::Plan& plan) const {
     summary.cost_after = summary.cost_before;
     return out;
   }
-  planner::OptimizationSummary kept = summary;
+  plan::OptimizationSummary kept = summary;
   kept.cost_after = problem.effort(z);
   out.plan = problem.toPlan(z, plan);
   out.plan.optimization = kept;

@@ -18,10 +18,10 @@ void finite(double& x, const char* what, std::string& note) {
 }
 
 /// Every number the plan file would hold for the segments and samples is finite.
-bool finitePlan(const planner::Plan& p) {
-  for (const planner::PlanSegment& s : p.segments)
+bool finitePlan(const plan::Plan& p) {
+  for (const plan::PlanSegment& s : p.segments)
     if (!std::isfinite(s.duration) || !s.tau.allFinite() || !s.tau_end.allFinite()) return false;
-  for (const planner::PlanSample& s : p.samples)
+  for (const plan::PlanSample& s : p.samples)
     if (!std::isfinite(s.t) || !s.q.allFinite() || !s.v.allFinite() || !s.tau.allFinite() ||
         !s.f_n.allFinite())
       return false;
@@ -36,12 +36,12 @@ bool cancelled(const PlanOptimizer& o) {
 struct Attempt {
   bool usable = false;
   bool converged = false;  ///< Ipopt converged
-  planner::Plan plan;
-  planner::OptimizationSummary summary;
+  plan::Plan plan;
+  plan::OptimizationSummary summary;
   std::string reason;  ///< why it is not usable
 };
 
-Attempt solve(const PlanOptimizer& optimizer, const planner::Plan& plan) {
+Attempt solve(const PlanOptimizer& optimizer, const plan::Plan& plan) {
   Attempt a;
   OptimizedPlan opt = optimizer.optimize(plan);
   a.summary = opt.plan.optimization;
@@ -66,23 +66,23 @@ Attempt solve(const PlanOptimizer& optimizer, const planner::Plan& plan) {
 
 }  // namespace
 
-RefineOutcome refinePlan(const PlanOptimizer& optimizer, const planner::Plan& plan,
+RefineOutcome refinePlan(const PlanOptimizer& optimizer, const plan::Plan& plan,
                          const RefineSettings& settings) {
   const RbsfModel& model = optimizer.model();
   const std::atomic<bool>* cancel = optimizer.settings().cancel;
   RefineOutcome out;
   out.plan = plan;
-  out.planner_certificate = planner::certify(model, plan, settings.certificate, nullptr, cancel);
+  out.planner_certificate = plan::certify(model, plan, settings.certificate, nullptr, cancel);
   out.plan.certificate = out.planner_certificate;
 
   std::vector<Attempt> attempts;
-  std::vector<planner::Certificate> certificates;
+  std::vector<plan::Certificate> certificates;
   auto attempt = [&](const PlanOptimizer& o) {
     attempts.push_back(solve(o, plan));
     certificates.emplace_back();
     Attempt& a = attempts.back();
     if (a.usable && !cancelled(o)) {
-      certificates.back() = planner::certify(model, a.plan, settings.certificate, nullptr, cancel);
+      certificates.back() = plan::certify(model, a.plan, settings.certificate, nullptr, cancel);
       a.summary.refined_success_rate = certificates.back().success_rate;
     }
   };
@@ -101,8 +101,8 @@ RefineOutcome refinePlan(const PlanOptimizer& optimizer, const planner::Plan& pl
   int best = -1;
   for (int k = 0; k < out.attempts; ++k) {
     if (!certificates[k].ran) continue;
-    const planner::Certificate& incumbent = best < 0 ? out.planner_certificate : certificates[best];
-    if (planner::betterCertificate(certificates[k], incumbent)) best = k;
+    const plan::Certificate& incumbent = best < 0 ? out.planner_certificate : certificates[best];
+    if (plan::betterCertificate(certificates[k], incumbent)) best = k;
   }
   std::ostringstream why;
   for (int k = 0; k < out.attempts; ++k) {
@@ -132,10 +132,10 @@ RefineOutcome refinePlan(const PlanOptimizer& optimizer, const planner::Plan& pl
   return out;
 }
 
-planner::PipelineSettings::RefineStep refinementStep(
-    const PlanOptimizer& optimizer, std::function<void(const RefineOutcome&)> report) {
-  return [&optimizer, report = std::move(report)](const planner::Plan& plan,
-                                                  const planner::CertificateSettings& certificate,
+plan::RefineStep refinementStep(const PlanOptimizer& optimizer,
+                                std::function<void(const RefineOutcome&)> report) {
+  return [&optimizer, report = std::move(report)](const plan::Plan& plan,
+                                                  const plan::CertificateSettings& certificate,
                                                   bool& refined, std::string& note) {
     RefineSettings settings;
     settings.certificate = certificate;

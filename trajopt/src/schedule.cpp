@@ -25,7 +25,7 @@ ContactRole Schedule::knotRole(int knot, int i) const {
   return r;
 }
 
-bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int intervals,
+bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals,
                    bool split_by_contact_modes, Schedule& schedule, std::string& why) {
   const int m = model.numFingers();
   schedule = Schedule{};
@@ -33,7 +33,7 @@ bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int interv
     why = "the plan has no segments";
     return false;
   }
-  for (const planner::PlanSegment& seg : plan.segments)
+  for (const plan::PlanSegment& seg : plan.segments)
     if (seg.steps < 1) {
       why = "a segment of the plan holds no simulator step";
       return false;
@@ -57,7 +57,7 @@ bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int interv
   xi_at.push_back(data.xi_hint);
   std::vector<long> seg_steps;
   std::vector<VecU> seg_tau;
-  for (const planner::PlanSegment& seg : plan.segments) {
+  for (const plan::PlanSegment& seg : plan.segments) {
     seg_steps.push_back(seg.steps);
     seg_tau.push_back(seg.tau);
   }
@@ -67,7 +67,7 @@ bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int interv
   rollout(sim, state, inputs.totalSteps(), ws, inputs,
           [&](const SimState& now, const StepReport& report, const VecU&, long n) {
             const std::size_t s = inputs.segment();
-            const planner::PlanSegment& seg = plan.segments[s];
+            const plan::PlanSegment& seg = plan.segments[s];
             for (int i = 0; i < m; ++i)
               ++seg_counts[s][i][static_cast<int>(report.contacts[i].mode)];
             steps.contacts.push_back(report.contacts);

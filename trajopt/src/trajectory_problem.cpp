@@ -12,7 +12,7 @@
 
 namespace rbsf::trajopt {
 
-TrajectoryProblem::TrajectoryProblem(const RbsfModel& model, const planner::Plan& plan,
+TrajectoryProblem::TrajectoryProblem(const RbsfModel& model, const plan::Plan& plan,
                                      const OptimizerSettings& settings)
     : model_(model) {
   ok_ = buildSchedule(model, plan, settings.knots, settings.split_runs_by_contact_modes, schedule_,
@@ -87,14 +87,14 @@ void TrajectoryProblem::jacobianValues(const ConstVectorRef& z, double* values) 
 
 double TrajectoryProblem::effort(const ConstVectorRef& z) const { return costs_[0]->value(z); }
 
-planner::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z, const planner::Plan& input) const {
+plan::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z, const plan::Plan& input) const {
   const int n = model_.configDim(), nu = model_.controlDim(), m = model_.numFingers();
-  planner::Plan out = input;
+  plan::Plan out = input;
   out.segments.clear();
   out.samples.clear();
   for (int k = 0; k < layout_->intervals(); ++k) {
     const int j = schedule_.run_of_interval[k];
-    planner::PlanSegment seg;
+    plan::PlanSegment seg;
     seg.phase = schedule_.runs[j].phase;
     seg.duration = z[layout_->duration(j)] / schedule_.runs[j].intervals;
     seg.steps = static_cast<int>(std::lround(seg.duration / input.simulator.time_step));
@@ -103,7 +103,7 @@ planner::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z, const planner::
     out.segments.push_back(seg);
   }
   for (int k = 0; k < layout_->knots(); ++k) {
-    planner::PlanSample s;
+    plan::PlanSample s;
     s.t = variables_->knotTime(z, k);
     s.q = z.segment(layout_->q(k), n);
     s.v = z.segment(layout_->v(k), n);
@@ -116,11 +116,10 @@ planner::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z, const planner::
   return out;
 }
 
-double planEffort(const RbsfModel& model, const planner::Plan& plan) {
+double planEffort(const RbsfModel& model, const plan::Plan& plan) {
   const VecU w = effortWeights(model);
   double J = 0.0;
-  for (const planner::PlanSegment& seg : plan.segments)
-    J += seg.duration * seg.tau.cwiseAbs2().dot(w);
+  for (const plan::PlanSegment& seg : plan.segments) J += seg.duration * seg.tau.cwiseAbs2().dot(w);
   return J;
 }
 

@@ -39,8 +39,8 @@
 #include "rbsf/dynamics/model.h"
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/reference_trajectory.h"
-#include "rbsf/planner/certificate.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/certificate.h"
+#include "rbsf/plan/plan.h"
 #include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/reorientation_pipeline.h"
 #include "rbsf/trajopt/plan_optimizer.h"
@@ -91,7 +91,7 @@ struct ReorientationRequest {
   trajopt::OptimizerSettings optimizer;  ///< its `cancel` is replaced as well
   /// \brief How the plan is certified (trials, seed, criteria); the trials run on the
   ///        worker thread, on every core.
-  planner::CertificateSettings certificate;
+  plan::CertificateSettings certificate;
   /// \brief Which planners (reorientation_pipeline.h). The default, the kinodynamic planner
   ///        alone, suits a cell that senses the part; kAuto tries the support planner (plans
   ///        the joints alone hold) first.
@@ -111,7 +111,7 @@ struct ReorientationRequest {
 struct RequestResult {
   PlanOutcome outcome = PlanOutcome::kNone;
   std::string message;         ///< why it failed, or the certificate's verdict
-  planner::Plan plan;          ///< the plan (published or not) with its certificate
+  plan::Plan plan;             ///< the plan (published or not) with its certificate
   double best_distance = 0.0;  ///< planner's best goal distance [tolerance units]
   std::uint64_t plan_id = 0;   ///< id of the published plan, 0 when not published
 };

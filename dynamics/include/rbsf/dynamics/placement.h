@@ -33,4 +33,7 @@ Placement placeFingers(const RbsfModel& model, const Pose& pose, double theta);
 /// \throws InputError with placeFingers()'s message when a finger cannot reach.
 VecQ restingConfiguration(const RbsfModel& model, const Pose& pose, double theta);
 
+/// \brief a - b wrapped to (-pi, pi] [rad]: the turn from b to a the shorter way.
+double angleDifference(double a, double b);
+
 }  // namespace rbsf

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief One sample of a simulated trajectory and its CSV form, shared by plan files
-///        (planner::PlanSample) and rbsf-simulate's output, so both write one format.
+///        (plan::PlanSample) and rbsf-simulate's output, so both write one format.
 ///
 /// A sample is the state (t, q, v) at the end of a simulator step together with the input
 /// tau held over that step, the normal force f_n of each contact averaged over the step

@@ -46,9 +46,6 @@ class PoseGoal : public ompl::base::GoalRegion {
   mutable bool reached_ = false;
 };
 
-/// \brief a - b wrapped to (-pi, pi].
-double angleDifference(double a, double b);
-
 /// \brief The goal's angle error phi - phi_g [rad]: wrapped to (-pi, pi], or plain when
 ///        `absolute_angle` (phi_g is a total turn).
 double goalAngleError(double phi, double phi_goal, bool absolute_angle);

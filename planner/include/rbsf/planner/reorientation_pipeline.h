@@ -24,8 +24,9 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/planner/certificate.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/certificate.h"
+#include "rbsf/plan/plan.h"
+#include "rbsf/plan/refine_step.h"
 #include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/support_planner.h"
 
@@ -51,18 +52,18 @@ const char* statusText(PipelineStatus status);
 
 /// \brief One attempt: a search and, when it found a path, its plan's certificate.
 struct PipelineAttempt {
-  std::string method;         ///< "support" or the kinodynamic planner's name
-  std::uint32_t seed = 0;     ///< the kinodynamic planner's seed (0 for support)
-  bool found = false;         ///< a path (exact or approximate)
-  bool exact = false;         ///< the plan reaches the goal
-  bool refined = false;       ///< the optimised plan was kept
-  double search_time = 0.0;   ///< wall time of the search [s]
-  double wall_time = 0.0;     ///< search, refinement and certificate [s]
-  long expansions = 0;        ///< the support search's expansions, every margin
-  double friction_use = 0.0;  ///< the support path's friction use (support_planner.h)
-  std::string phases;         ///< Plan::phaseSequence() of the attempt's plan
-  Certificate certificate;    ///< of the attempt's plan (ran false when none)
-  std::string note;           ///< why the search found nothing, or the refinement's reason
+  std::string method;             ///< "support" or the kinodynamic planner's name
+  std::uint32_t seed = 0;         ///< the kinodynamic planner's seed (0 for support)
+  bool found = false;             ///< a path (exact or approximate)
+  bool exact = false;             ///< the plan reaches the goal
+  bool refined = false;           ///< the optimised plan was kept
+  double search_time = 0.0;       ///< wall time of the search [s]
+  double wall_time = 0.0;         ///< search, refinement and certificate [s]
+  long expansions = 0;            ///< the support search's expansions, every margin
+  double friction_use = 0.0;      ///< the support path's friction use (support_planner.h)
+  std::string phases;             ///< Plan::phaseSequence() of the attempt's plan
+  plan::Certificate certificate;  ///< of the attempt's plan (ran false when none)
+  std::string note;               ///< why the search found nothing, or the refinement's reason
 };
 
 /// \brief Settings of ReorientationPipeline; defaults documented.
@@ -80,26 +81,23 @@ struct PipelineSettings {
   int max_attempts = 0;           ///< kinodynamic searches at most (0: while the budget lasts)
   double min_attempt_time = 1.0;  ///< [s] no later kinodynamic search starts with less left
   /// \brief The trials (tolerances are set from `planner`; feedback as given).
-  CertificateSettings certificate;
-  /// \brief A refinement of an exact kinodynamic plan: returns the plan to keep with its
-  ///        certificate made with the given settings, sets `refined` when that is the
-  ///        refined one and `note` to why not (trajopt::refinementStep).
-  using RefineStep = std::function<Plan(const Plan& plan, const CertificateSettings& certificate,
-                                        bool& refined, std::string& note)>;
-  RefineStep refine;  ///< empty: plans are certified as found
+  plan::CertificateSettings certificate;
+  /// \brief The refinement of each exact kinodynamic plan (trajopt::refinementStep);
+  ///        empty: plans are certified as found.
+  plan::RefineStep refine;
   /// \brief Called when a stage starts (progress lines).
   std::function<void(PipelineStage, const std::string& method, std::uint32_t seed)> on_stage;
   /// \brief Called when a search has found a plan, before it is refined and certified.
-  std::function<void(const PipelineAttempt&, const Plan&)> on_found;
+  std::function<void(const PipelineAttempt&, const plan::Plan&)> on_found;
   /// \brief Called when an attempt has been judged (or found nothing), with its plan (report
   /// lines).
-  std::function<void(const PipelineAttempt&, const Plan&)> on_attempt;
+  std::function<void(const PipelineAttempt&, const plan::Plan&)> on_attempt;
 };
 
 /// \brief The result of a run: the plan to write and how it was found.
 struct PipelineOutcome {
   PipelineStatus status = PipelineStatus::kNoPlan;
-  Plan plan;  ///< the best plan (empty when status is kNoPlan)
+  plan::Plan plan;  ///< the best plan (empty when status is kNoPlan)
   std::vector<PipelineAttempt> attempts;
   int chosen = -1;  ///< index in attempts of the plan kept (-1: none)
   /// \brief The kinodynamic searches' smallest goal distance (tolerance units; infinity

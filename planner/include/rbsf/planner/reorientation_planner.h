@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "rbsf/dynamics/simulator.h"
+#include "rbsf/plan/plan.h"
 #include "rbsf/planner/control_sampler.h"
-#include "rbsf/planner/plan.h"
 #include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/planner_setup.h"
 #include "rbsf/planner/propagator.h"
@@ -52,7 +52,7 @@ class ReorientationPlanner {
 
   /// \brief Search. Returns false (and leaves `plan` empty) only when the planner produced
   ///        no path at all; otherwise plan.status says "exact" or "approximate".
-  bool solve(const Problem& problem, Plan& plan);
+  bool solve(const Problem& problem, plan::Plan& plan);
 
   /// \brief The OMPL setup for `problem` (checked with checkProblem()); OMPL not seeded.
   PlannerSetup setup(const Problem& problem) const;
@@ -61,7 +61,7 @@ class ReorientationPlanner {
   ///        path_mismatch against the planner's states and the goal distance of the
   ///        re-simulated end. Returns false (plan untouched) when there is no path.
   bool makePlan(const Problem& problem, const PlannerSetup& setup, double planning_time,
-                Plan& plan) const;
+                plan::Plan& plan) const;
 
   /// \brief Smallest goal distance reached by the last solve() (tolerance units).
   double bestDistance() const { return best_distance_; }

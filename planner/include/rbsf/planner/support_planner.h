@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "rbsf/dynamics/feedback_schedule.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 #include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/support_trajectory.h"
 
@@ -47,7 +47,7 @@ class SupportPlanner {
 
   /// \brief Search, then make the plan. False (plan empty) when no support path was found:
   ///        message() says why.
-  bool solve(const Problem& problem, Plan& plan);
+  bool solve(const Problem& problem, plan::Plan& plan);
 
   /// \brief Why the last solve() found nothing, empty otherwise.
   const std::string& message() const { return message_; }

@@ -34,7 +34,7 @@
 #include "rbsf/dynamics/feedback_schedule.h"
 #include "rbsf/dynamics/reference_trajectory.h"
 #include "rbsf/dynamics/sensing.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 #include "rbsf/planner/support_search.h"
 
 namespace rbsf::planner {
@@ -68,9 +68,9 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
 ///        with joint_feedback set: a segment per evaluation, samples every `sample_steps`
 ///        steps, status "exact" when the part ends within the tolerances (position [m],
 ///        angle [rad]) of `goal`.
-Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference,
-                    const SimulatorSettings& simulator, const FeedbackSettings& feedback,
-                    const Pose& goal, double position_tolerance, double angle_tolerance,
-                    int sample_steps, int control_steps = 5);
+plan::Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference,
+                          const SimulatorSettings& simulator, const FeedbackSettings& feedback,
+                          const Pose& goal, double position_tolerance, double angle_tolerance,
+                          int sample_steps, int control_steps = 5);
 
 }  // namespace rbsf::planner

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 
 #include "rbsf/dynamics/model.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 #include "rbsf/trajopt/decision_layout.h"
 #include "rbsf/trajopt/schedule.h"
 
@@ -36,7 +36,7 @@ struct OptimizerSettings;
 class DecisionVariables {
  public:
   DecisionVariables(const RbsfModel& model, const DecisionLayout& layout, const Schedule& schedule,
-                    const planner::Plan& plan, const OptimizerSettings& settings);
+                    const plan::Plan& plan, const OptimizerSettings& settings);
 
   void bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) const;
   Eigen::VectorXd initialGuess() const;
@@ -51,7 +51,7 @@ class DecisionVariables {
   const RbsfModel& model_;
   DecisionLayout layout_;
   const Schedule& schedule_;
-  const planner::Plan& plan_;
+  const plan::Plan& plan_;
   double min_scale_, max_scale_;
   double goal_phi_;
 };

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "rbsf/dynamics/model.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 
 namespace rbsf::trajopt {
 
@@ -58,7 +58,7 @@ struct OptimizerSettings {
 ///        `plan.optimization` says what happened and `plan` is then the input plan.
 struct OptimizedPlan {
   bool success = false;  ///< Ipopt converged (Solve_Succeeded or Solved_To_Acceptable_Level)
-  planner::Plan plan;    ///< refined segments (tau ramps, see PlanSegment::tau_end) and samples
+  plan::Plan plan;       ///< refined segments (tau ramps, see PlanSegment::tau_end) and samples
   /// \brief On success, per sample (knot) of `plan`: the tangential contact forces f_t [N]
   ///        (along t_i, non-zero only where sticking; like the samples' f_n, the knot's
   ///        own) and the foot-point parameters xi.
@@ -73,7 +73,7 @@ class PlanOptimizer {
 
   /// \brief Refine `plan` (made by the planner for this model's cell).
   /// \throws InputError when the plan does not belong to the model (dimensions).
-  OptimizedPlan optimize(const planner::Plan& plan) const;
+  OptimizedPlan optimize(const plan::Plan& plan) const;
 
   const RbsfModel& model() const { return model_; }
   const OptimizerSettings& settings() const { return settings_; }

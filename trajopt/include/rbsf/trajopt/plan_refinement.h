@@ -15,8 +15,8 @@
 #include <functional>
 #include <string>
 
-#include "rbsf/planner/certificate.h"
-#include "rbsf/planner/reorientation_pipeline.h"
+#include "rbsf/plan/certificate.h"
+#include "rbsf/plan/refine_step.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
 namespace rbsf::trajopt {
@@ -25,7 +25,7 @@ namespace rbsf::trajopt {
 struct RefineOutcome {
   /// \brief The chosen plan with its `certificate` and the optimiser's `optimization`
   ///        summary (of the chosen solve, else of the first; `chosen`, `message`).
-  planner::Plan plan;
+  plan::Plan plan;
   bool refined = false;  ///< the chosen plan is an optimised one
   /// \brief The solve summarised in plan.optimization converged (Ipopt's Solve_Succeeded or
   ///        Solved_To_Acceptable_Level).
@@ -33,7 +33,7 @@ struct RefineOutcome {
   std::string reason;  ///< why no optimised plan was chosen; empty when one was
   int attempts = 0;    ///< solves run (1, or 2 with the retry)
   /// \brief The planner's plan's certificate (also when an optimised plan is chosen).
-  planner::Certificate planner_certificate;
+  plan::Certificate planner_certificate;
 };
 
 /// \brief How refinePlan tries and judges.
@@ -41,20 +41,21 @@ struct RefineSettings {
   /// \brief Retry with this minimum slip rate [1/s] when the first refinement is not
   ///        certified (0 or the optimiser's own value: no retry).
   double retry_min_slip_rate = 0.1;
-  planner::CertificateSettings certificate;  ///< how each candidate is certified
+  plan::CertificateSettings certificate;  ///< how each candidate is certified
 };
 
 /// \brief Optimise, certify and choose (file comment). Every number in the summaries is
 ///        finite. A cancel (OptimizerSettings::cancel) stops after the current step: the
 ///        planner's plan is returned, certified if that had finished.
 /// \throws InputError when the plan does not fit the optimiser's cell.
-RefineOutcome refinePlan(const PlanOptimizer& optimizer, const planner::Plan& plan,
+RefineOutcome refinePlan(const PlanOptimizer& optimizer, const plan::Plan& plan,
                          const RefineSettings& settings = {});
 
-/// \brief The pipeline's refinement step (planner/reorientation_pipeline.h): refinePlan with
+/// \brief The pipeline's refinement step (plan/refine_step.h, planner/reorientation_pipeline.h):
+/// refinePlan with
 ///        `optimizer` (kept by reference: it must outlive the step) and the pipeline's
 ///        certificate settings; `report`, when given, sees every outcome.
-planner::PipelineSettings::RefineStep refinementStep(
-    const PlanOptimizer& optimizer, std::function<void(const RefineOutcome&)> report = {});
+plan::RefineStep refinementStep(const PlanOptimizer& optimizer,
+                                std::function<void(const RefineOutcome&)> report = {});
 
 }  // namespace rbsf::trajopt

@@ -9,7 +9,7 @@
 
 #include "rbsf/dynamics/model.h"
 #include "rbsf/dynamics/simulator.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 
 namespace rbsf::trajopt {
 
@@ -68,7 +68,7 @@ struct Schedule {
 ///        that sticks most, U none sticking (a sticking majority becomes sliding). Spread
 ///        `intervals` over the runs in proportion to their durations, at least 2 each.
 /// \return false (with `why`) when intervals < 2 runs or the plan has no segments.
-bool buildSchedule(const RbsfModel& model, const planner::Plan& plan, int intervals,
+bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals,
                    bool split_by_contact_modes, Schedule& schedule, std::string& why);
 
 }  // namespace rbsf::trajopt

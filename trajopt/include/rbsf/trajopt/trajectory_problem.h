@@ -25,7 +25,7 @@ class TrajectoryProblem {
  public:
   /// \brief Build the schedule and every element; ok() is false (why() says why) when the
   ///        plan cannot be scheduled.
-  TrajectoryProblem(const RbsfModel& model, const planner::Plan& plan,
+  TrajectoryProblem(const RbsfModel& model, const plan::Plan& plan,
                     const OptimizerSettings& settings);
   TrajectoryProblem(const TrajectoryProblem&) = delete;
   TrajectoryProblem& operator=(const TrajectoryProblem&) = delete;
@@ -62,7 +62,7 @@ class TrajectoryProblem {
   double effort(const ConstVectorRef& z) const;
 
   /// \brief The refined plan from a solution z (see PlanOptimizer::optimize).
-  planner::Plan toPlan(const ConstVectorRef& z, const planner::Plan& input) const;
+  plan::Plan toPlan(const ConstVectorRef& z, const plan::Plan& input) const;
 
  private:
   const RbsfModel& model_;
@@ -81,6 +81,6 @@ class TrajectoryProblem {
 
 /// \brief The planner's effort: sum over segments of duration x tau^T W tau [s] (W as
 ///        effortWeights()); the integral for piecewise-constant tau.
-double planEffort(const RbsfModel& model, const planner::Plan& plan);
+double planEffort(const RbsfModel& model, const plan::Plan& plan);
 
 }  // namespace rbsf::trajopt

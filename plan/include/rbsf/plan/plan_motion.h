@@ -9,7 +9,7 @@
 
 #include "rbsf/dynamics/motion_limits.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 struct Plan;
 
@@ -49,4 +49,4 @@ std::string motionViolationText(const PlanMotion& motion);
 ///        57.3 deg/s), ends at rest" (or the violation).
 std::string motionText(const PlanMotion& motion);
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

@@ -1,4 +1,4 @@
-#include "rbsf/planner/certificate.h"
+#include "rbsf/plan/certificate.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +10,9 @@
 #include <tuple>
 
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/planner/plan_reference.h"
+#include "rbsf/plan/plan_reference.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 namespace {
 
@@ -195,4 +195,4 @@ TrialOutcome traceTrial(const RbsfModel& model, const Plan& plan, const Certific
   return o;
 }
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

@@ -4,7 +4,7 @@
 
 #include "rbsf/dynamics/errors.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 using nlohmann::json;
 
@@ -226,4 +226,4 @@ std::string certificateJsonText(const Certificate& certificate) {
   return certificateJson(certificate).dump(1) + "\n";
 }
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

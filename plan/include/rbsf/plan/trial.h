@@ -34,10 +34,10 @@
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/feedback_schedule.h"
 #include "rbsf/dynamics/trajectory_sample.h"
-#include "rbsf/planner/certificate_report.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/certificate_report.h"
+#include "rbsf/plan/plan.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 /// \brief Criteria and limits of a trial (file comment).
 struct TrialSettings {
@@ -78,4 +78,4 @@ TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const 
                       const TrialSettings& settings, bool open_loop,
                       std::vector<TrajectorySample>* trace = nullptr);
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

@@ -16,7 +16,7 @@
 
 #include "rbsf/dynamics/model.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 struct Plan;
 
@@ -48,4 +48,4 @@ PlanHolding measureHolding(const RbsfModel& model, const Plan& plan,
 ///        part is free for 2.3 s from t = 0.4 s (allowed 0.1 s)".
 std::string holdingText(const PlanHolding& holding);
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

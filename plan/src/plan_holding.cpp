@@ -1,12 +1,12 @@
-#include "rbsf/planner/plan_holding.h"
+#include "rbsf/plan/plan_holding.h"
 
 #include <cmath>
 #include <cstdio>
 
 #include "rbsf/dynamics/contact_balance.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 PlanHolding measureHolding(const RbsfModel& model, const Plan& plan, const HoldingSettings& s) {
   PlanHolding h;
@@ -60,4 +60,4 @@ std::string holdingText(const PlanHolding& h) {
   return buf;
 }
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

@@ -1,4 +1,4 @@
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 
 #include <algorithm>
 #include <array>
@@ -13,7 +13,7 @@
 #include "rbsf/dynamics/input_file.h"
 #include "rbsf/dynamics/rollout.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 using nlohmann::json;
 
@@ -377,4 +377,4 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
   }
 }
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

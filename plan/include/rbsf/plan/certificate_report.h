@@ -8,10 +8,10 @@
 #include <string>
 
 #include "rbsf/dynamics/sensing.h"
-#include "rbsf/planner/plan_holding.h"
-#include "rbsf/planner/plan_motion.h"
+#include "rbsf/plan/plan_holding.h"
+#include "rbsf/plan/plan_motion.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 /// \brief How one trial ended. Poses are the part's frame as the plan knows it (a drawn
 ///        COM offset does not move the goal).
@@ -80,4 +80,4 @@ std::string certificateReportText(const Certificate& certificate);
 ///        its holding is required and fails).
 std::string verdictText(const Certificate& certificate);
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

@@ -66,9 +66,9 @@
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/dynamics/trajectory_sample.h"
-#include "rbsf/planner/certificate_report.h"
+#include "rbsf/plan/certificate_report.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 /// \brief tau held over an integer number of simulator steps.
 struct PlanSegment {
@@ -181,4 +181,4 @@ Plan readPlanJson(const std::string& path);
 /// \throws InputError naming the label and key when malformed.
 Plan parsePlanJson(std::string_view text, const std::string& label);
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

@@ -1,8 +1,8 @@
-#include "rbsf/planner/plan_reference.h"
+#include "rbsf/plan/plan_reference.h"
 
 #include "rbsf/dynamics/errors.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 ReferenceTrajectory makeReference(const Plan& plan) {
   if (plan.samples.empty() || plan.segments.empty())
@@ -24,4 +24,4 @@ Sensing lawSensing(const Sensing& cell, const Plan& plan) {
   return s;
 }
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

@@ -1,12 +1,12 @@
-#include "rbsf/planner/plan_motion.h"
+#include "rbsf/plan/plan_motion.h"
 
 #include <cmath>
 #include <cstdio>
 
 #include "rbsf/dynamics/state_layout.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 namespace {
 
 std::string number(double v) {
@@ -62,4 +62,4 @@ std::string motionText(const PlanMotion& m) {
          degrees(m.limits.angular_speed) + " deg/s), ends at rest";
 }
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

@@ -4,9 +4,9 @@
 
 #include "rbsf/dynamics/reference_trajectory.h"
 #include "rbsf/dynamics/sensing.h"
-#include "rbsf/planner/plan.h"
+#include "rbsf/plan/plan.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 /// \brief Knots from the plan's samples (t, q, v; a sample at the time of the previous one
 ///        is skipped), input pieces from its segments back to back from t = 0 (tau held,
@@ -20,4 +20,4 @@ ReferenceTrajectory makeReference(const Plan& plan);
 ///        resolves, docs/notes/2026-11-25-support-planner.md).
 Sensing lawSensing(const Sensing& cell, const Plan& plan);
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "rbsf/planner/certificate_report.h"
+#include "rbsf/plan/certificate_report.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 /// \brief The certificate as a JSON object (keys in plan.h's table).
 nlohmann::json certificateJson(const Certificate& certificate);
@@ -15,4 +15,4 @@ nlohmann::json certificateJson(const Certificate& certificate);
 /// \brief Read it back. \throws InputError naming `where` and the key when malformed.
 Certificate readCertificateJson(const nlohmann::json& j, const std::string& where);
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

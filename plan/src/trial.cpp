@@ -1,4 +1,4 @@
-#include "rbsf/planner/trial.h"
+#include "rbsf/plan/trial.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,9 +13,8 @@
 #include "rbsf/dynamics/rollout.h"
 #include "rbsf/dynamics/sensor_model.h"
 #include "rbsf/dynamics/state_layout.h"
-#include "rbsf/planner/goal.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 namespace {
 
@@ -216,4 +215,4 @@ TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const 
   return r;
 }
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan

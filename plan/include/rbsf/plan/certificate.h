@@ -26,11 +26,11 @@
 
 #include "rbsf/dynamics/feedback_schedule.h"
 #include "rbsf/dynamics/model.h"
-#include "rbsf/planner/certificate_report.h"
-#include "rbsf/planner/plan.h"
-#include "rbsf/planner/trial.h"
+#include "rbsf/plan/certificate_report.h"
+#include "rbsf/plan/plan.h"
+#include "rbsf/plan/trial.h"
 
-namespace rbsf::planner {
+namespace rbsf::plan {
 
 /// \brief How a certificate is made; defaults documented.
 struct CertificateSettings {
@@ -73,4 +73,4 @@ TrialOutcome traceTrial(const RbsfModel& model, const Plan& plan,
                         const CertificateSettings& settings, int index,
                         std::vector<TrajectorySample>& trace);
 
-}  // namespace rbsf::planner
+}  // namespace rbsf::plan
