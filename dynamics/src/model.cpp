@@ -60,21 +60,16 @@ void RbsfModel::updateContacts(const VecQ& q, ModelData& data) const {
 
     // The gap grows when the object moves along n (the tip recedes inside the normal
     // direction) and shrinks when the tip moves along n: G1_i = [G_i n_i; -J_i^T n_i].
-    double col[5];
+    const int rows[5] = {kX, kY, kPhi, kTheta, stroke(i)};
+    double n_col[5], t_col[5];
     equations::contactColumn<double>(c.lever.x(), c.lever.y(), c.tip.x(), c.tip.y(), d_stroke.x(),
-                                     d_stroke.y(), c.normal.x(), c.normal.y(), col);
-    data.G1(kX, i) = col[0];
-    data.G1(kY, i) = col[1];
-    data.G1(kPhi, i) = col[2];
-    data.G1(kTheta, i) = col[3];
-    data.G1(stroke(i), i) = col[4];
+                                     d_stroke.y(), c.normal.x(), c.normal.y(), n_col);
     equations::contactColumn<double>(c.lever.x(), c.lever.y(), c.tip.x(), c.tip.y(), d_stroke.x(),
-                                     d_stroke.y(), c.tangent.x(), c.tangent.y(), col);
-    data.T(kX, i) = col[0];
-    data.T(kY, i) = col[1];
-    data.T(kPhi, i) = col[2];
-    data.T(kTheta, i) = col[3];
-    data.T(stroke(i), i) = col[4];
+                                     d_stroke.y(), c.tangent.x(), c.tangent.y(), t_col);
+    for (int r = 0; r < 5; ++r) {
+      data.G1(rows[r], i) = n_col[r];
+      data.T(rows[r], i) = t_col[r];
+    }
   }
 }
 
