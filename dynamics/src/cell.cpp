@@ -19,138 +19,16 @@
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/input_file.h"
 #include "rbsf/dynamics/types.h"
+#include "rbsf/dynamics/yaml_reader.h"
 
 namespace rbsf {
 namespace {
 
-/// Shortest round-trip text of a number ("-2", "0.1", "nan").
-std::string fmt(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[32];
-  auto res = std::to_chars(buf, buf + sizeof(buf), v);
-  return std::string(buf, res.ptr);
-}
-
-std::string prefixOf(const std::string& label) { return label.empty() ? "" : label + ": "; }
-
-/// Range checks with messages "<label>: <path> must be ... (got v)".
-struct Checker {
-  std::string prefix;
-
-  [[noreturn]] void fail(const std::string& msg) const { throw InputError(prefix + msg); }
-  void finite(double v, const std::string& path) const {
-    if (!std::isfinite(v)) fail(path + " must be a finite number (got " + fmt(v) + ")");
-  }
-  void positive(double v, const std::string& path) const {
-    finite(v, path);
-    if (!(v > 0)) fail(path + " must be positive (got " + fmt(v) + ")");
-  }
-  void nonNegative(double v, const std::string& path) const {
-    finite(v, path);
-    if (v < 0) fail(path + " must not be negative (got " + fmt(v) + ")");
-  }
-  void interval(double lo, double hi, const std::string& path) const {
-    finite(lo, path + "[0]");
-    finite(hi, path + "[1]");
-    if (!(lo < hi))
-      fail(path + " must be [lo, hi] with lo < hi (got [" + fmt(lo) + ", " + fmt(hi) + "])");
-  }
-  /// v <= max; `max_text` is the bound as the message shows it ("10000 Hz", "pi/4").
-  void atMost(double v, double max, const std::string& max_text, const std::string& path) const {
-    if (v > max) fail(path + " must be at most " + max_text + " (got " + fmt(v) + ")");
-  }
-  /// A relative half-width: 0 <= v < 1, so a draw keeps the quantity positive.
-  void fraction(double v, const std::string& path) const {
-    finite(v, path);
-    if (!(v >= 0 && v < 1)) fail(path + " must lie in [0, 1) (got " + fmt(v) + ")");
-  }
-};
-
-/// Structural reading of YAML nodes; messages "<label>: <path> ...".
-struct Reader : Checker {
-  static std::string join(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-  }
-
-  static std::string describe(const YAML::Node& n) {
-    if (n.IsNull()) return "an empty value";
-    if (n.IsSequence()) return "a list";
-    if (n.IsMap()) return "a mapping";
-    return "'" + n.Scalar() + "'";
-  }
-
-  /// Requires `n` to be a mapping whose keys are unique and all in `allowed`.
-  void mapping(const YAML::Node& n, const std::string& path,
-               std::initializer_list<std::string_view> allowed) const {
-    const std::string what = path.empty() ? "the cell" : path;
-    if (!n.IsMap()) fail(what + " must be a mapping (got " + describe(n) + ")");
-    std::set<std::string> seen;
-    for (const auto& kv : n) {
-      if (!kv.first.IsScalar()) fail(what + " has a key that is not a plain name");
-      const std::string key = kv.first.Scalar();
-      if (!seen.insert(key).second) fail("duplicate key " + join(path, key));
-      bool ok = false;
-      std::string list;
-      for (auto a : allowed) {
-        ok = ok || key == a;
-        list += (list.empty() ? "" : ", ") + std::string(a);
-      }
-      if (!ok) fail("unknown key " + join(path, key) + " (expected one of: " + list + ")");
-    }
-  }
-
-  /// The value at map[key]; fails when missing and required.
-  YAML::Node get(const YAML::Node& map, const std::string& path, const char* key,
-                 bool required = true) const {
-    YAML::Node n = map[key];
-    if (!n.IsDefined() && required) fail("missing key " + join(path, key));
-    return n;
-  }
-
-  double number(const YAML::Node& n, const std::string& path) const {
-    double v = 0;
-    bool ok = false;
-    if (n.IsScalar()) {
-      try {
-        v = n.as<double>();
-        ok = true;
-      } catch (const YAML::Exception&) {
-      }
-    }
-    if (!ok) fail(path + " must be a number (got " + describe(n) + ")");
-    if (!std::isfinite(v)) fail(path + " must be a finite number (got " + describe(n) + ")");
-    return v;
-  }
-
-  double number(const YAML::Node& map, const std::string& path, const char* key,
-                double fallback = 0, bool required = true) const {
-    YAML::Node n = get(map, path, key, required);
-    return n.IsDefined() ? number(n, join(path, key)) : fallback;
-  }
-
-  /// A list of exactly two numbers; `fallback` when missing and not required.
-  std::pair<double, double> pair(const YAML::Node& map, const std::string& path, const char* key,
-                                 bool required = true,
-                                 std::pair<double, double> fallback = {0.0, 0.0}) const {
-    const std::string p = join(path, key);
-    YAML::Node n = get(map, path, key, required);
-    if (!n.IsDefined()) return fallback;
-    if (!n.IsSequence() || n.size() != 2)
-      fail(p + " must be a list of 2 numbers (got " +
-           (!n.IsSequence() ? describe(n)
-            : n.size() == 1 ? std::string("1 entry")
-                            : std::to_string(n.size()) + " entries") +
-           ")");
-    return {number(n[0], p + "[0]"), number(n[1], p + "[1]")};
-  }
-};
-
-std::shared_ptr<const Shape> readShape(const Reader& rd, const YAML::Node& n) {
+std::shared_ptr<const Shape> readShape(const YamlReader& rd, const YAML::Node& n) {
   const std::string path = "object.shape";
-  if (!n.IsMap()) rd.fail(path + " must be a mapping (got " + Reader::describe(n) + ")");
+  if (!n.IsMap()) rd.fail(path + " must be a mapping (got " + YamlReader::describe(n) + ")");
   const YAML::Node t = rd.get(n, path, "type");
-  if (!t.IsScalar()) rd.fail(path + ".type must be a name (got " + Reader::describe(t) + ")");
+  if (!t.IsScalar()) rd.fail(path + ".type must be a name (got " + YamlReader::describe(t) + ")");
   const std::string type = t.Scalar();
   // The shape constructors check their arguments too; name the key path if they object.
   auto build = [&](auto make) -> std::shared_ptr<const Shape> {
@@ -162,7 +40,7 @@ std::shared_ptr<const Shape> readShape(const Reader& rd, const YAML::Node& n) {
   };
   auto positive = [&](const char* key) {
     const double v = rd.number(n, path, key);
-    rd.positive(v, Reader::join(path, key));
+    rd.positive(v, YamlReader::join(path, key));
     return v;
   };
   if (type == "ellipse") {
@@ -183,7 +61,8 @@ std::shared_ptr<const Shape> readShape(const Reader& rd, const YAML::Node& n) {
     rd.mapping(n, path, {"type", "a", "b", "exponent", "center"});
     const double a = positive("a"), b = positive("b");
     const double e = rd.number(n, path, "exponent");
-    if (e < 2 || e > 20) rd.fail(path + ".exponent must lie in [2, 20] (got " + fmt(e) + ")");
+    if (e < 2 || e > 20)
+      rd.fail(path + ".exponent must lie in [2, 20] (got " + roundTripText(e) + ")");
     const auto [cx, cy] = rd.pair(n, path, "center", false);
     const Vec2 center(cx, cy);  // a plain variable: clang 14 cannot capture bindings
     return build([&] { return std::make_shared<SuperellipseShape>(a, b, e, center); });
@@ -192,7 +71,7 @@ std::shared_ptr<const Shape> readShape(const Reader& rd, const YAML::Node& n) {
 }
 
 /// Section `sensing` (sensing.h); keys left out keep the values already in `s`.
-void readSensing(const Reader& rd, const YAML::Node& n, Sensing& s) {
+void readSensing(const YamlReader& rd, const YAML::Node& n, Sensing& s) {
   rd.mapping(n, "sensing", {"joints", "part_pose"});
   const YAML::Node joints = rd.get(n, "sensing", "joints", false);
   if (joints.IsDefined()) {
@@ -209,7 +88,8 @@ void readSensing(const Reader& rd, const YAML::Node& n, Sensing& s) {
     pp.present = false;
     return;
   }
-  if (!pose.IsMap()) rd.fail(p + " must be a mapping or none (got " + Reader::describe(pose) + ")");
+  if (!pose.IsMap())
+    rd.fail(p + " must be a mapping or none (got " + YamlReader::describe(pose) + ")");
   rd.mapping(pose, p, {"rate", "latency", "noise"});
   pp.present = true;
   pp.rate = rd.number(pose, p, "rate", pp.rate, false);
@@ -219,7 +99,7 @@ void readSensing(const Reader& rd, const YAML::Node& n, Sensing& s) {
 }
 
 /// Section `uncertainty` (sensing.h); keys left out keep the values already in `u`.
-void readUncertainty(const Reader& rd, const YAML::Node& n, Uncertainty& u) {
+void readUncertainty(const YamlReader& rd, const YAML::Node& n, Uncertainty& u) {
   const std::string p = "uncertainty";
   rd.mapping(n, p,
              {"mass", "inertia", "com", "static_friction", "kinetic_friction", "initial_position",
@@ -236,7 +116,7 @@ void readUncertainty(const Reader& rd, const YAML::Node& n, Uncertainty& u) {
 }
 
 /// Section `motion_limits` (motion_limits.h); keys left out keep the values in `l`.
-void readMotionLimits(const Reader& rd, const YAML::Node& n, MotionLimits& l) {
+void readMotionLimits(const YamlReader& rd, const YAML::Node& n, MotionLimits& l) {
   const std::string p = "motion_limits";
   rd.mapping(n, p, {"part_speed", "angular_speed", "rest"});
   l.part_speed = rd.number(n, p, "part_speed", l.part_speed, false);
@@ -248,14 +128,14 @@ void readMotionLimits(const Reader& rd, const YAML::Node& n, MotionLimits& l) {
 }  // namespace
 
 void Cell::validate() const {
-  const Checker c{prefixOf(name)};
+  const InputChecker c{messagePrefix(name)};
   c.nonNegative(gravity, "gravity");
   c.nonNegative(base.inertia, "base.inertia");
   c.interval(base.theta_min, base.theta_max, "base.theta_limits");
   // Angles in cell files are radians; a limit beyond half a turn is almost surely degrees.
   if (std::abs(base.theta_min) > M_PI + 1e-3 || std::abs(base.theta_max) > M_PI + 1e-3)
-    c.fail("base.theta_limits must lie within [-pi, pi] radians (got [" + fmt(base.theta_min) +
-           ", " + fmt(base.theta_max) + "])");
+    c.fail("base.theta_limits must lie within [-pi, pi] radians (got [" +
+           roundTripText(base.theta_min) + ", " + roundTripText(base.theta_max) + "])");
   c.positive(base.torque_limit, "base.torque_limit");
   if (fingers.empty()) c.fail("fingers must list at least one finger");
   if (numFingers() > kMaxFingers)
@@ -285,8 +165,8 @@ void Cell::validate() const {
   c.nonNegative(friction.mu_static, "friction.static");
   c.nonNegative(friction.mu_kinetic, "friction.kinetic");
   if (friction.mu_kinetic > friction.mu_static)
-    c.fail("friction.kinetic (" + fmt(friction.mu_kinetic) + ") must not exceed friction.static (" +
-           fmt(friction.mu_static) + ")");
+    c.fail("friction.kinetic (" + roundTripText(friction.mu_kinetic) +
+           ") must not exceed friction.static (" + roundTripText(friction.mu_static) + ")");
 
   // sensing (sensing.h). part_pose is checked even when absent (`none`): its defaults pass.
   c.nonNegative(sensing.joints.angle_noise, "sensing.joints.noise[0]");
@@ -320,22 +200,18 @@ void Cell::validate() const {
   c.finite(u.kinetic_friction_max, "uncertainty.kinetic_friction[1]");
   if (!(u.kinetic_friction_min <= u.kinetic_friction_max))
     c.fail("uncertainty.kinetic_friction must be [min, max] with min <= max (got [" +
-           fmt(u.kinetic_friction_min) + ", " + fmt(u.kinetic_friction_max) + "])");
+           roundTripText(u.kinetic_friction_min) + ", " + roundTripText(u.kinetic_friction_max) +
+           "])");
 }
 
 Cell parseCell(const std::string& yaml_text, const std::string& label) {
-  const Reader rd{{prefixOf(label)}};
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    rd.fail("malformed YAML at line " + std::to_string(e.mark.line + 1) + ", column " +
-            std::to_string(e.mark.column + 1) + ": " + e.msg);
-  }
+  const YamlReader rd{{messagePrefix(label)}};
+  const YAML::Node root = rd.load(yaml_text);
   if (root.IsNull()) rd.fail("the cell is empty (expected keys base, fingers, object, friction)");
   rd.mapping(root, "",
              {"gravity", "base", "fingers", "object", "friction", "sensing", "uncertainty",
-              "motion_limits"});
+              "motion_limits"},
+             "the cell");
 
   Cell cell;
   cell.name = label;
@@ -349,7 +225,7 @@ Cell parseCell(const std::string& yaml_text, const std::string& label) {
 
   const YAML::Node fingers = rd.get(root, "", "fingers");
   if (!fingers.IsSequence())
-    rd.fail("fingers must be a list of fingers (got " + Reader::describe(fingers) + ")");
+    rd.fail("fingers must be a list of fingers (got " + YamlReader::describe(fingers) + ")");
   for (std::size_t i = 0; i < fingers.size(); ++i) {
     const std::string p = "fingers[" + std::to_string(i) + "]";
     const YAML::Node f = fingers[i];

@@ -180,11 +180,11 @@ TEST(ProblemSuite, BadFilesNameFileProblemAndKey) {
   const std::string ok = "cell: ../default.yaml, start: \"0.1,0.4,0\", goal: \"0.1,0.4,-30deg\"";
   const Case cases[] = {
       {"problems: []", "non-empty list"},
-      {"problems:\n  - {name: a, " + ok + ", colour: red}",
-       "problems[0] (a): unknown key 'colour'"},
-      {"problems:\n  - {name: a, cell: x.yaml, start: \"0.1,0.4,0\"}", "missing key 'goal'"},
+      {"problems:\n  - {name: a, " + ok + ", colour: red}", "unknown key problems[0].colour"},
+      {"problems:\n  - {name: a, cell: x.yaml, start: \"0.1,0.4,0\"}",
+       "missing key problems[0].goal"},
       {"problems:\n  - {name: a, cell: x.yaml, start: \"0.1,0.4\", goal: \"0,0,0\"}",
-       "problems[0] (a): start"},
+       "problems[0].start"},
       {"problems:\n  - {name: a, " + ok + "}\n  - {name: a, " + ok + "}", "duplicate problem name"},
       {"problems:\n  - {name: \"a b\", " + ok + "}", "name 'a b'"},
       {"problems:\n  - {name: a, " + ok + ", goal_angle: round}", "goal_angle"},
