@@ -30,9 +30,10 @@ struct OptimizerSettings;
 /// that of the interval after it (impulse / duration, impacts included: the collocation integrates
 /// knot forces over those halves); tau the held tau of the segment the knot starts; xi the closest
 /// boundary points of the tips (unwrapped along the plan); then clipped into the bounds (a force
-/// where the schedule has the contact off becomes 0). Against forces sampled at the knots with f_t
-/// = 0 (before 2026-11-21), the median of the object's velocity defects at the guess was 4-40 times
-/// smaller on the default problems (measured under the trapezoidal rule, docs/optimiser.md).
+/// where the schedule has the contact off becomes 0). Why the means: against forces sampled at the
+/// knots with f_t = 0, they made the median of the object's velocity defects at the guess 4-40
+/// times smaller on the default problems (measured under the trapezoidal rule,
+/// docs/optimiser.md).
 class DecisionVariables {
  public:
   DecisionVariables(const RbsfModel& model, const DecisionLayout& layout, const Schedule& schedule,
