@@ -1,8 +1,9 @@
 // Optimiser benchmark (a program, not a timed test): the default cell's 30, 90 and 180
-// degree reorientations, planned with seeds 1..N (KPIECE1), each plan refined as the product
-// refines it (trajopt::refinePlan, --knots collocation intervals: optimise, certify the
-// planner's plan and the refinement, retry once with a minimum slip rate when the
-// refinement is not certified, keep the better). Per problem: plans found, Ipopt converged
+// degree reorientations through the product's pipeline call (ReorientationPipeline: one
+// KPIECE1 search per seed 1..N), each exact plan refined by the pipeline's refinement step
+// (trajopt::refinementStep, --knots collocation intervals: optimise, certify the planner's
+// plan and the refinement, retry once with a minimum slip rate when the refinement is not
+// certified, keep the better). Per problem: plans found, Ipopt converged
 // (the summarised solve), median iterations, median and worst solve time (wall), the median
 // CPU time of the whole refinement with its certificates (which the machine's load affects
 // less), median effort reduction 1 - integral(tau^T W tau) after / before over converged
@@ -24,7 +25,7 @@
 
 #include "bench_stats.h"
 #include "rbsf/dynamics/cell.h"
-#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/reorientation_pipeline.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 #include "rbsf/trajopt/plan_refinement.h"
@@ -96,19 +97,34 @@ int run(int argc, char** argv) {
     int plans = 0, converged = 0, kept = 0, certified = 0;
     if (!only.empty() && std::string(c.label).rfind(only + " ", 0) != 0) continue;
     for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
-      rbsf::planner::PlannerSettings ps;
-      ps.seed = static_cast<std::uint32_t>(seed);
-      ps.time_limit = time_limit;
-      rbsf::planner::ReorientationPlanner planner(model, ps);
+      // The product's pipeline call, one kinodynamic search with this seed, whose exact plan
+      // is refined (the refinement step reports its outcome and is timed).
+      rbsf::planner::PipelineSettings ps;
+      ps.method = rbsf::planner::PipelineSettings::Method::kKinodynamic;
+      ps.max_attempts = 1;
+      ps.planner.seed = static_cast<std::uint32_t>(seed);
+      ps.planner.time_limit = time_limit;
+      rbsf::trajopt::RefineOutcome out;
+      bool refined = false;
+      double cpu = 0.0;
+      const rbsf::plan::RefineStep step = rbsf::trajopt::refinementStep(
+          optimizer, [&](const rbsf::trajopt::RefineOutcome& r) { out = r; });
+      ps.refine = [&](const rbsf::plan::Plan& plan, const rbsf::plan::CertificateSettings& cs,
+                      bool& kept, std::string& note) {
+        const std::clock_t cpu0 = std::clock();
+        rbsf::plan::Plan result = step(plan, cs, kept, note);
+        cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+        refined = true;
+        return result;
+      };
       rbsf::planner::Problem p;
       p.start = {0.1, 0.40, 0.0};
       p.goal = c.goal;
-      rbsf::plan::Plan plan;
-      if (!planner.solve(p, plan) || plan.status != rbsf::plan::PlanStatus::kExact) continue;
+      rbsf::planner::ReorientationPipeline pipeline(model, ps);
+      pipeline.run(p);
+      if (!refined) continue;  // no exact plan: nothing to refine
+      const rbsf::plan::Plan& plan = out.plan;
       ++plans;
-      const std::clock_t cpu0 = std::clock();
-      const rbsf::trajopt::RefineOutcome out = rbsf::trajopt::refinePlan(optimizer, plan);
-      const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
       cpu_times.push_back(cpu);
       const rbsf::plan::OptimizationSummary& o = out.plan.optimization;
       if (verbose)
