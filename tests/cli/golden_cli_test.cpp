@@ -46,8 +46,11 @@ std::string sha256(const std::string& path) {
 /// standard output with the recorded hashes of `tag`.
 void expectRecorded(const std::string& tag, const std::string& args, int expected_status) {
   const std::string base = ::testing::TempDir() + std::to_string(getpid()) + "_golden_" + tag;
-  const Result r = run(kPlanExe + " " + args + " --reproducible --out " + base + ".json --csv " +
-                       base + ".csv --svg " + base + ".svg --report " + base + ".html");
+  // From the cells folder with a relative cell path: the pictures name the cell as given,
+  // and a checkout's own path must not change them.
+  const Result r =
+      run("cd " + kCells + " && " + kPlanExe + " " + args + " --reproducible --out " + base +
+          ".json --csv " + base + ".csv --svg " + base + ".svg --report " + base + ".html");
   ASSERT_EQ(r.status, expected_status) << r.err;
   // The standard output less its one wall-clock figure, the planning time.
   const std::string text =
@@ -69,18 +72,16 @@ void expectRecorded(const std::string& tag, const std::string& args, int expecte
 
 TEST(GoldenPlans, SupportPlanIsByteIdenticalToTheRecordedOne) {
   // The default pipeline on the default cell: the certified 30 degree support plan.
-  expectRecorded(
-      "support30",
-      "--cell " + kCells + "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-30deg --quiet", 0);
+  expectRecorded("support30",
+                 "--cell default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-30deg --quiet", 0);
 }
 
 TEST(GoldenPlans, KinodynamicPlanIsByteIdenticalToTheRecordedOne) {
   // One KPIECE1 search with a fixed seed, not optimised; the plan is not certified (exit 4).
   expectRecorded("kpiece15",
-                 "--cell " + kCells +
-                     "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 7"
-                     " --time-limit 120 --quiet --planner KPIECE1 --attempts 1 --no-optimize"
-                     " --trials 8",
+                 "--cell default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 7"
+                 " --time-limit 120 --quiet --planner KPIECE1 --attempts 1 --no-optimize"
+                 " --trials 8",
                  4);
 }
 
