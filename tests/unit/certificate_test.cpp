@@ -1,4 +1,4 @@
-// The certificate (planner/certificate.h): its draws stay within the cell's uncertainty,
+// The certificate (plan/certificate.h): its draws stay within the cell's uncertainty,
 // it is the same bits for a seed (whatever the threads) and differs across seeds, it
 // travels in plan files, and it tells the laws apart where the physics does: a part sliding
 // on two frictionless tips is held only with part feedback.

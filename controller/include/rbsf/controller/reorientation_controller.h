@@ -6,7 +6,7 @@
 ///
 /// Threads. plan() starts a worker thread and returns at once; the worker runs the
 /// planner (planner/reorientation_planner.h) and, when asked and built in, the optimiser
-/// (trajopt/plan_refinement.h), certifies the result (planner/certificate.h: closed-loop
+/// (trajopt/plan_refinement.h), certifies the result (plan/certificate.h: closed-loop
 /// trials under the cell's sensing and uncertainty), builds the plan's feedback schedule
 /// and publishes it. Any number of threads may call sample(), publishedPlan(), status(),
 /// outcome() and planId() at any time, also while the worker runs: they take no lock,

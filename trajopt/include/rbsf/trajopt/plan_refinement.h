@@ -2,7 +2,7 @@
 /// \file
 /// \brief The optimisation step of plan-reorientation and of the controller facade:
 ///        optimise an exact plan, certify the planner's plan and the optimised one
-///        (planner/certificate.h), and keep the one with the better certificate.
+///        (plan/certificate.h), and keep the one with the better certificate.
 ///
 /// The order: the planner's plan is certified; the optimiser refines it and, on success,
 /// the refinement is certified; when that refinement is not certified, the optimiser runs
