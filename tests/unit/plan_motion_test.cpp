@@ -1,4 +1,4 @@
-// The plan's motion against the cell's motion limits (planner/plan_motion.h): peaks and
+// The plan's motion against the cell's motion limits (plan/plan_motion.h): peaks and
 // the final rest measured over the samples, the violation named in metres and degrees,
 // and a certificate that refuses a plan outside the limits whatever its trials; and its
 // holding (plan_holding.h): a part on two frictionless tips is not held by the joints.

@@ -19,7 +19,7 @@
 /// reference is the first knot and the first tau; after the end the last knot (its
 /// velocity) and the last piece's final tau.
 ///
-/// A reference is built once (from a plan by planner/plan_reference.h) and then only read:
+/// A reference is built once (from a plan by plan/plan_reference.h) and then only read:
 /// one reference may serve many threads.
 
 #include <vector>
