@@ -14,8 +14,6 @@
 
 #include <cmath>
 
-#include <Eigen/Core>
-
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/state_layout.h"
 

@@ -105,14 +105,13 @@ void contactWrench(const RbsfModel& model, int i, const S& phi, const S& theta, 
   const S cp = cos(phi), sp = sin(phi), ct = cos(theta), st = sin(theta);
   // Force in the object frame (n = S t), then world; the lever R(phi) c; the tip
   // R(theta)(r_i, l_i); the finger's axis R(theta)(0, 1).
-  const S flx = fn * (-foot.t[1]) + ft * foot.t[0];
-  const S fly = fn * foot.t[0] + ft * foot.t[1];
-  const S fx = cp * flx - sp * fly, fy = sp * flx + cp * fly;
-  const S lx = cp * foot.c[0] - sp * foot.c[1], ly = sp * foot.c[0] + cp * foot.c[1];
+  const Vec2T<S> f_local(fn * (-foot.t[1]) + ft * foot.t[0], fn * foot.t[0] + ft * foot.t[1]);
+  const Vec2T<S> f = rotated<S>(cp, sp, f_local);
+  const Vec2T<S> lever = rotated<S>(cp, sp, foot.c);
   const double r = model.cell().fingers[i].r;
   const S px = ct * r - st * l, py = st * r + ct * l;
   const S ax = -st;
-  equations::contactColumn<S>(lx, ly, px, py, ax, ct, fx, fy, w);
+  equations::contactColumn<S>(lever[0], lever[1], px, py, ax, ct, f[0], f[1], w);
 }
 
 /// \brief out = M(q) a (dynamics/equations.h), without forming M. q is read from z at
