@@ -107,10 +107,14 @@ int run(int argc, char** argv) {
       rbsf::trajopt::RefineOutcome out;
       bool refined = false;
       double cpu = 0.0;
+      std::string planned_phases;  // of the planner's plan, which the step refines
+      std::size_t planned_segments = 0;
       const rbsf::plan::RefineStep step = rbsf::trajopt::refinementStep(
           optimizer, [&](const rbsf::trajopt::RefineOutcome& r) { out = r; });
       ps.refine = [&](const rbsf::plan::Plan& plan, const rbsf::plan::CertificateSettings& cs,
                       bool& kept, std::string& note) {
+        planned_phases = plan.phaseSequence();
+        planned_segments = plan.segments.size();
         const std::clock_t cpu0 = std::clock();
         rbsf::plan::Plan result = step(plan, cs, kept, note);
         cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
@@ -123,7 +127,6 @@ int run(int argc, char** argv) {
       rbsf::planner::ReorientationPipeline pipeline(model, ps);
       pipeline.run(p);
       if (!refined) continue;  // no exact plan: nothing to refine
-      const rbsf::plan::Plan& plan = out.plan;
       ++plans;
       cpu_times.push_back(cpu);
       const rbsf::plan::OptimizationSummary& o = out.plan.optimization;
@@ -131,8 +134,8 @@ int run(int argc, char** argv) {
         std::printf(
             "  seed %d: %s (%s, %zu segments) %s, %d iterations, %.3f s (refinement cpu %.3f "
             "s), effort %.4f -> %.4f, %s, %s %s\n",
-            seed, c.label, plan.phaseSequence().c_str(), plan.segments.size(), o.status.c_str(),
-            o.iterations, o.solve_time, cpu, o.cost_before, o.cost_after,
+            seed, c.label, planned_phases.c_str(), planned_segments, o.status.c_str(), o.iterations,
+            o.solve_time, cpu, o.cost_before, o.cost_after,
             out.refined ? "refinement kept" : "planner's plan kept",
             out.plan.certificate.certified ? "certified" : "not certified", o.message.c_str());
       times.push_back(o.solve_time);

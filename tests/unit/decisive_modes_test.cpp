@@ -143,7 +143,7 @@ TEST_F(DecisiveModesTest, PlansKeepTheRuleInEveryPropagationStep) {
 TEST_F(DecisiveModesTest, NinetyDegreePlanIsFollowedByTheJointServoToItsEnd) {
   // Without the rule no plan of this turn (seeds 1-8) was followed: the servo's corrections
   // flipped contacts that the plan held at the edge of a mode
-  // (docs/notes/2026-11-22-refinement-under-joint-tracking.md). The nominal trial (no draws,
+  // (the record on refinement under joint tracking in docs/notes/). The nominal trial (no draws,
   // exact sensors) of a cell that sees only its joints stays on the plan's path to its end;
   // the plan ends moving, so what follows the end is not asked.
   ReorientationPlanner rp(model, settings(2));

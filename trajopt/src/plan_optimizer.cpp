@@ -136,7 +136,8 @@ OptimizedPlan PlanOptimizer::optimize(const plan::Plan& plan) const {
   // At most 3 iterative-refinement steps per linear solve (Ipopt's default is 10): on the
   // benchmark's plans the same or fewer iterations at about 15 % less time each; the extra
   // back-solves, where refinement stalls short of residual_ratio_max on a poorly
-  // conditioned KKT system, bought nothing (docs/notes/2026-11-22-optimiser-iteration-cost.md).
+  // conditioned KKT system, bought nothing (the optimiser's iteration-cost record in
+  // docs/notes/).
   o.SetIntegerValue("max_refinement_steps", 3);
   o.SetStringValue("hessian_approximation", settings_.exact_hessian ? "exact" : "limited-memory");
   o.SetIntegerValue("print_level", settings_.print_level);
