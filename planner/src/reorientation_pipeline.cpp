@@ -139,6 +139,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     a.search_time = since(start);
     a.expansions = support.expansions();
     a.friction_use = support.frictionUse();
+    a.paths_run = support.pathsRun();
     if (found && !cancelled()) {
       judge(a, std::move(plan), start, false);
     } else {

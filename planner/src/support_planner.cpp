@@ -21,39 +21,77 @@ SupportPlanner::SupportPlanner(const RbsfModel& model, SupportPlannerSettings se
 bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point t0 = Clock::now();
+  auto timeLeft = [&] {
+    return settings_.time_limit - std::chrono::duration<double>(Clock::now() - t0).count();
+  };
   message_.clear();
   expansions_ = 0;
   friction_use_ = 0.0;
-  SupportPath path;
-  std::unique_ptr<SupportSearch> search;
-  for (double use : settings_.friction_uses) {
-    SupportSearchSettings ss = settings_.search;
-    ss.support.balance.friction_use = use;
-    ss.time_limit = settings_.time_limit - std::chrono::duration<double>(Clock::now() - t0).count();
-    if (ss.time_limit <= 0.0) break;
-    search = std::make_unique<SupportSearch>(model_, ss);
-    path = search->search(problem.start, problem.start_theta, problem.goal, settings_.cancel);
-    expansions_ += path.expansions;
-    if (path.found) {
-      friction_use_ = use;
-      break;
-    }
-    if (settings_.cancel != nullptr && settings_.cancel->load()) break;
-  }
-  if (!path.found) {
-    message_ = path.message.empty() ? "no time left for a search" : path.message;
-    plan = plan::Plan{};
-    return false;
-  }
+  paths_ = 0;
+  plan = plan::Plan{};
   // The cell's motion limits bound the timing's speeds (the part turns with psi and theta).
   SupportTiming timing = settings_.timing;
   const MotionLimits& limits = model_.cell().motion_limits;
   timing.part_speed = std::min(timing.part_speed, limits.part_speed);
   timing.angular_speed = std::min(timing.angular_speed, 0.5 * limits.angular_speed);
-  const ReferenceTrajectory reference = supportReference(model_, search->geometry(), path, timing);
-  plan = closedLoopPlan(model_, reference, settings_.simulator, settings_.feedback, problem.goal,
-                        settings_.position_tolerance, settings_.angle_tolerance,
-                        settings_.sample_steps);
+
+  bool have = false, runs = false;
+  double best_departure = -1.0;  // of `plan`, the longest-running path's
+  std::string why;
+  for (double use : settings_.friction_uses) {
+    SupportSearchSettings ss = settings_.search;
+    ss.support.balance.friction_use = use;
+    SupportSearch search(model_, ss);
+    for (int n = 0; n < settings_.max_paths && !runs; ++n) {
+      if (timeLeft() <= 0.0) break;
+      search.setTimeLimit(timeLeft());
+      const SupportPath path =
+          search.search(problem.start, problem.start_theta, problem.goal, settings_.cancel);
+      expansions_ += path.expansions;
+      if (!path.found) {
+        why = path.message;
+        break;
+      }
+      ++paths_;
+      std::vector<SupportRun> stretches;
+      ReferenceTrajectory reference;
+      try {
+        reference = supportReference(model_, search.geometry(), path, timing, &stretches);
+      } catch (const SupportReferenceError& e) {
+        for (std::size_t k = e.first_step; k <= e.last_step; ++k)
+          search.block(path.steps[k], settings_.block_radius);
+        why = e.what();
+        continue;
+      }
+      plan::Plan run = closedLoopPlan(model_, reference, settings_.simulator, settings_.feedback,
+                                      problem.goal, settings_.position_tolerance,
+                                      settings_.angle_tolerance, settings_.sample_steps);
+      runs = run.status == plan::PlanStatus::kExact;
+      // Where the run left its reference: the stretch to blame (the end when it never did).
+      const double departs =
+          departureTime(run, reference, settings_.departure_position, settings_.departure_angle);
+      const double lasted = departs < 0.0 ? reference.endTime() : departs;
+      if (runs || !have || lasted > best_departure) {
+        plan = std::move(run);
+        best_departure = lasted;
+        friction_use_ = use;
+        have = true;
+      }
+      if (runs) break;
+      why = "no support path found has a closed-loop run that ends on the goal";
+      const std::size_t blocked = search.blockedCount();
+      for (const SupportRun& s : stretches)
+        if (lasted >= s.start && lasted <= s.end)
+          for (std::size_t k = s.first_step; k <= s.last_step; ++k)
+            search.block(path.steps[k], settings_.block_radius);
+      if (search.blockedCount() == blocked) break;  // the same path would come again
+    }
+    if (runs || (settings_.cancel != nullptr && settings_.cancel->load())) break;
+  }
+  if (!have) {
+    message_ = why.empty() ? "no time left for a search" : why;
+    return false;
+  }
   plan.planner = "support";
   plan.start = problem.start;
   plan.start_theta = problem.start_theta;

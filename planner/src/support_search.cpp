@@ -18,16 +18,6 @@ double distance(const JigPose& a, const JigPose& b, double length_scale) {
   return std::sqrt(dx * dx + dy * dy + dp * dp + dt * dt);
 }
 
-/// A lattice cell of the search and its contact set.
-using CellKey = std::array<std::int32_t, 6>;
-struct CellKeyHash {
-  std::size_t operator()(const CellKey& k) const {
-    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the six numbers
-    for (std::int32_t v : k) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
-    return static_cast<std::size_t>(h);
-  }
-};
-
 JigPose lerp(const JigPose& a, const JigPose& b, double s) {
   return JigPose{a.X + s * (b.X - a.X), a.Y + s * (b.Y - a.Y), a.psi + s * (b.psi - a.psi),
                  a.theta + s * (b.theta - a.theta)};
@@ -44,6 +34,30 @@ struct SupportSearch::Node {
 SupportSearch::SupportSearch(const RbsfModel& model, SupportSearchSettings settings)
     : model_(model), settings_(settings), geometry_(model, settings.support) {}
 
+std::size_t SupportSearch::CellKeyHash::operator()(const CellKey& k) const {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the six numbers
+  for (std::int32_t v : k) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
+  return static_cast<std::size_t>(h);
+}
+
+SupportSearch::CellKey SupportSearch::key(const SupportStep& s) const {
+  auto idx = [](double v, double step) { return static_cast<std::int32_t>(std::lround(v / step)); };
+  return CellKey{idx(s.pose.psi, settings_.angle_step),
+                 idx(s.pose.theta, settings_.angle_step),
+                 idx(s.pose.X, settings_.xy_step),
+                 0,  // not Y: the height changes no balance (file comment)
+                 static_cast<std::int32_t>(s.set.touching),
+                 static_cast<std::int32_t>(s.set.sticking)};
+}
+
+void SupportSearch::block(const SupportStep& step, int radius) {
+  const CellKey k = key(step);
+  for (int i = -radius; i <= radius; ++i)
+    for (int j = -radius; j <= radius; ++j)
+      for (int l = -radius; l <= radius; ++l)
+        blocked_.insert(CellKey{k[0] + i, k[1] + j, k[2] + l, k[3], k[4], k[5]});
+}
+
 bool SupportSearch::anchorFor(const JigPose& pose, const ContactSet& set, PivotAnchor& anchor) {
   anchor = PivotAnchor{};
   const int k = set.pivot();
@@ -55,6 +69,11 @@ bool SupportSearch::anchorFor(const JigPose& pose, const ContactSet& set, PivotA
 
 bool SupportSearch::stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
                            const PivotAnchor& anchor, SupportStep& out) {
+  if (!blocked_.empty()) {
+    out.pose = pose;
+    out.set = set;
+    if (blocked_.count(key(out)) != 0) return false;
+  }
   const std::optional<VecQ> q = geometry_.configuration(pose, set);
   if (!q) return false;
   const VecC slip = set == from.set ? geometry_.slipDirections(from.q, *q) : VecC();
@@ -158,17 +177,6 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
                            std::abs(l - s.anchor.stroke) / ls);
   };
 
-  auto key = [&](const SupportStep& s) {
-    auto idx = [](double v, double step) {
-      return static_cast<std::int32_t>(std::lround(v / step));
-    };
-    return CellKey{idx(s.pose.psi, a),
-                   idx(s.pose.theta, a),
-                   idx(s.pose.X, d),
-                   0,  // not Y: the height changes no balance (file comment)
-                   static_cast<std::int32_t>(s.set.touching),
-                   static_cast<std::int32_t>(s.set.sticking)};
-  };
   // Pivots meet by part and base angle, touching fingers and pivot finger.
   auto pivotKey = [&](const SupportStep& s, int dpsi, int dtheta, int finger) {
     return CellKey{static_cast<std::int32_t>(std::lround(s.pose.psi / a)) + dpsi,
@@ -205,6 +213,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
   auto push = [&](int t, const SupportStep& s, double g, int parent) {
     Tree& tree = trees[t];
     const CellKey k = key(s);
+    if (blocked_.count(k) != 0) return;
     const auto it = tree.best.find(k);
     if (it != tree.best.end() && it->second <= g + 1e-12) return;
     tree.best[k] = g;

@@ -47,6 +47,7 @@ struct Stretch {
   VecU tau_from, tau_to;                ///< kRamp: the inputs at both ends
   ContactSet next;                      ///< kRamp: the set after it
   double duration = 0.0;
+  std::size_t first_step = 0, last_step = 0;  ///< SupportRun
 };
 
 Eigen::VectorXd runCoordinates(const SupportStep& s) {
@@ -76,6 +77,12 @@ JigPose runPose(const Stretch& r, const SupportGeometry& g, const Eigen::VectorX
 
 }  // namespace
 
+SupportReferenceError::SupportReferenceError(std::size_t first, std::size_t last)
+    : std::runtime_error("the support path's steps " + std::to_string(first) + "-" +
+                         std::to_string(last) + " leave the jig between waypoints"),
+      first_step(first),
+      last_step(last) {}
+
 ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& geometry,
                                      const SupportPath& path, const SupportTiming& timing,
                                      std::vector<SupportRun>* runs) {
@@ -92,7 +99,7 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
     if (r.kind == Stretch::kRun)
       pose = runPose(r, geometry, catmullRom(r.points, s * (r.points.size() - 1.0)));
     std::optional<VecQ> q = geometry.configuration(pose, set, false);
-    if (!q) throw std::runtime_error("supportReference: the support path leaves the jig");
+    if (!q) throw SupportReferenceError(r.first_step, r.last_step);
     if (r.kind == Stretch::kFinger) (*q)[layout::stroke(r.finger)] = r.from + s * (r.to - r.from);
     return *q;
   };
@@ -124,6 +131,8 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
         r.from = a;
         r.to = b;
         r.duration = std::max(timing.min_run_time, 1.875 * std::abs(b - a) / timing.stroke_speed);
+        r.first_step = i - 1;
+        r.last_step = i;
         stretches.push_back(r);
       };
       for (int f = 0; f < m; ++f)
@@ -137,6 +146,8 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
       ramp.tau_to = staticTau(pose, to);
       ramp.next = to;
       ramp.duration = timing.handover_time;
+      ramp.first_step = i - 1;
+      ramp.last_step = i;
       stretches.push_back(ramp);
       const std::optional<VecQ> q_from = geometry.configuration(pose, from, false);
       for (int f = 0; f < m; ++f)
@@ -149,6 +160,8 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
       r.set = first.set;
       r.base = first.pose;
       r.anchor = first.anchor;
+      r.first_step = i;
+      r.last_step = j;
       for (std::size_t k = i; k <= j; ++k) r.points.push_back(runCoordinates(path.steps[k]));
       // Lengths along the spline: the part's travel and turn, the base's, the strokes'.
       double travel = 0.0, turn = 0.0, base = 0.0, stroke = 0.0;
@@ -206,11 +219,23 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
     }
     if (runs != nullptr)
       runs->push_back(SupportRun{t0, t0 + r.duration, r.kind == Stretch::kRamp ? r.next : r.set,
-                                 r.kind != Stretch::kRun});
+                                 r.kind != Stretch::kRun, r.first_step, r.last_step});
     first_knot = false;
     t0 += r.duration;
   }
   return ref;
+}
+
+double departureTime(const plan::Plan& plan, const ReferenceTrajectory& reference, double position,
+                     double angle) {
+  ReferenceSample r;
+  for (const plan::PlanSample& s : plan.samples) {
+    reference.sample(std::clamp(s.t, reference.startTime(), reference.endTime()), r);
+    const double dx = s.q[layout::kX] - r.q[layout::kX], dy = s.q[layout::kY] - r.q[layout::kY];
+    if (std::hypot(dx, dy) > position || std::abs(s.q[layout::kPhi] - r.q[layout::kPhi]) > angle)
+      return s.t;
+  }
+  return -1.0;
 }
 
 plan::Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference,

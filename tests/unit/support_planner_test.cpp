@@ -5,7 +5,9 @@
 // ends at rest on the goal.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <set>
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/state_layout.h"
@@ -150,6 +152,86 @@ TEST(SupportTrajectory, ThePlanIsExactSlowJointFedBackAndEndsAtRestOnTheGoal) {
   EXPECT_GE(long_free.longest_free, 0.3);
   EXPECT_LT(long_free.longest_free, 0.3 + 0.03);  // samples every 10 steps at most
   EXPECT_LT(long_free.longest_free_start, 1.0);
+}
+
+TEST(SupportSearch, ABlockedCellIsAvoidedByTheNextSearch) {
+  const RbsfModel& model = defaultModel();
+  SupportSearchSettings s = searchSettings();
+  s.time_limit = 10.0;
+  SupportSearch search(model, s);
+  const SupportPath first = search.search(kStart, 0.0, kTurn15);
+  ASSERT_TRUE(first.found) << first.message;
+  ASSERT_GT(first.steps.size(), 2u);
+  auto cell = [&](const SupportStep& st) {
+    return std::array<long, 5>{
+        std::lround(st.pose.psi / s.angle_step), std::lround(st.pose.theta / s.angle_step),
+        std::lround(st.pose.X / s.xy_step), static_cast<long>(st.set.touching),
+        static_cast<long>(st.set.sticking)};
+  };
+  const SupportStep& middle = first.steps[first.steps.size() / 2];
+  search.block(middle);
+  EXPECT_EQ(search.blockedCount(), 1u);
+  const SupportPath second = search.search(kStart, 0.0, kTurn15);
+  ASSERT_TRUE(second.found) << second.message;  // the lattice has other ways round
+  bool differs = second.steps.size() != first.steps.size();
+  for (std::size_t k = 0; k < second.steps.size(); ++k) {
+    EXPECT_NE(cell(second.steps[k]), cell(middle)) << "step " << k << " is in the blocked cell";
+    differs = differs || cell(second.steps[k]) != cell(first.steps[k]);
+  }
+  EXPECT_TRUE(differs);
+}
+
+TEST(SupportTrajectory, TheDepartureIsTheFirstSampleOffTheReference) {
+  const RbsfModel& model = defaultModel();
+  SupportSearch search(model, searchSettings());
+  const SupportPath path = search.search(kStart, 0.0, kTurn15);
+  ASSERT_TRUE(path.found);
+  std::vector<SupportRun> runs;
+  const ReferenceTrajectory ref = supportReference(model, search.geometry(), path, {}, &runs);
+  // The stretches tile the reference and name the path's steps in order.
+  ASSERT_FALSE(runs.empty());
+  EXPECT_NEAR(runs.front().start, ref.startTime(), 1e-12);
+  EXPECT_NEAR(runs.back().end, ref.endTime(), 1e-9);
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    EXPECT_LE(runs[k].first_step, runs[k].last_step);
+    EXPECT_LT(runs[k].last_step, path.steps.size());
+    if (k > 0) EXPECT_NEAR(runs[k].start, runs[k - 1].end, 1e-9);
+    if (!runs[k].handover) EXPECT_EQ(runs[k].set, path.steps[runs[k].first_step].set);
+  }
+  Plan plan = closedLoopPlan(model, ref, SimulatorSettings{}, FeedbackSettings{}, kTurn15, 0.01,
+                             2.0 * M_PI / 180, 10);
+  EXPECT_LT(departureTime(plan, ref, 0.005, 0.017), 0.0);  // it follows its reference
+  // Turned 1.2 deg off from the middle sample on: it departs there, by angle alone.
+  const std::size_t mid = plan.samples.size() / 2;
+  for (std::size_t k = mid; k < plan.samples.size(); ++k)
+    plan.samples[k].q[layout::kPhi] += 1.2 * M_PI / 180;
+  EXPECT_DOUBLE_EQ(departureTime(plan, ref, 0.005, 1.0 * M_PI / 180), plan.samples[mid].t);
+  EXPECT_LT(departureTime(plan, ref, 0.005, 1.5 * M_PI / 180), 0.0);
+}
+
+TEST(SupportPlanner, PathsWhoseRunsMissTheGoalAreBlockedAndTheLongestRunningIsKept) {
+  // A goal tolerance no run can keep: every path found is run, a stretch of it blocked and
+  // the search repeated, max_paths times; the plan kept is approximate.
+  const RbsfModel& model = defaultModel();
+  SupportPlannerSettings s;
+  s.friction_uses = {0.45};
+  s.position_tolerance = 1e-12;
+  s.time_limit = 20.0;
+  s.max_paths = 3;
+  Problem problem;
+  problem.start = kStart;
+  problem.goal = kTurn15;
+  SupportPlanner planner(model, s);
+  Plan plan;
+  ASSERT_TRUE(planner.solve(problem, plan)) << planner.message();
+  EXPECT_EQ(planner.pathsRun(), 3);
+  EXPECT_EQ(plan.status, plan::PlanStatus::kApproximate);
+  EXPECT_EQ(plan.planner, "support");
+  // With the default bound the first path runs and is kept, exact.
+  SupportPlanner defaults(model, SupportPlannerSettings{});
+  ASSERT_TRUE(defaults.solve(problem, plan)) << defaults.message();
+  EXPECT_EQ(defaults.pathsRun(), 1);
+  EXPECT_EQ(plan.status, plan::PlanStatus::kExact);
 }
 
 }  // namespace

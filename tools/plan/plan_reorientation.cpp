@@ -221,7 +221,12 @@ int run(int argc, char** argv) {
       if (!InterruptFlag::raised()) printOptimisation(r);
     });
   pipeline.on_found = [](const planner::PipelineAttempt& a, const plan::Plan& plan) {
-    if (a.method == "support")
+    if (a.method == "support" && a.paths_run > 1)
+      std::printf(
+          "support path: sticking forces within %.2f of the friction cone, %ld "
+          "expansions, %d paths run (the others left their references)\n",
+          a.friction_use, a.expansions, a.paths_run);
+    else if (a.method == "support")
       std::printf(
           "support path: sticking forces within %.2f of the friction cone, %ld "
           "expansions\n",

@@ -61,6 +61,7 @@ struct PipelineAttempt {
   double wall_time = 0.0;         ///< search, refinement and certificate [s]
   long expansions = 0;            ///< the support search's expansions, every margin
   double friction_use = 0.0;      ///< the support path's friction use (support_planner.h)
+  int paths_run = 0;              ///< support paths found and run (support_planner.h)
   std::string phases;             ///< Plan::phaseSequence() of the attempt's plan
   plan::Certificate certificate;  ///< of the attempt's plan (ran false when none)
   std::string note;               ///< why the search found nothing, or the refinement's reason

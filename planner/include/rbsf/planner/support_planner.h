@@ -7,6 +7,15 @@
 /// the joints alone hold it (Plan::joint_feedback), so its law feeds back the joints. The
 /// goal angle is reached the shorter way (or +- 2 pi when that way has no path). Status
 /// "exact" when the closed-loop run ends within the tolerances of the goal.
+///
+/// A balanced support is not always one the joints can hold: where the touching contacts
+/// barely fix the part, the nominal closed-loop run leaves the reference with the strokes
+/// on theirs. So each path found is run before it is accepted (a lazy check, like a lazy
+/// roadmap's edges): when the run misses the goal, the stretch where it first departed from
+/// the reference (or the last, when it never did), or a stretch whose motion leaves the
+/// jig, has its cells blocked (SupportSearch::block) and the search runs again, until a
+/// run ends on the goal, `max_paths` were run or the time is up. Without such a run, the
+/// plan of the path that followed its reference longest is returned (status approximate).
 
 #include <atomic>
 #include <string>
@@ -30,6 +39,15 @@ struct SupportPlannerSettings {
   ///        of each search attempt, the strongest margin first: the next is tried when a
   ///        search finds no path within the time left.
   std::vector<double> friction_uses = {0.45, 0.6};
+  /// \brief The nominal run departs when the part is this far from the reference [m]...
+  ///        (half the goal tolerances; the certified 30 degree plan's run stays within
+  ///        0.9 mm and 0.42 deg of its reference)
+  double departure_position = 0.005;
+  /// \brief ... or turned this far from it [rad].
+  double departure_angle = 1.0 * M_PI / 180;
+  /// \brief Lattice steps (psi, theta, X) blocked around a departed stretch's waypoints.
+  int block_radius = 1;
+  int max_paths = 40;                         ///< paths run per friction use (>= 1)
   double position_tolerance = 0.01;           ///< [m]
   double angle_tolerance = 2.0 * M_PI / 180;  ///< [rad]
   int sample_steps = 20;                      ///< plan samples every this many steps
@@ -55,6 +73,8 @@ class SupportPlanner {
   long expansions() const { return expansions_; }
   /// \brief The friction use of the attempt that found the path (0 when none did).
   double frictionUse() const { return friction_use_; }
+  /// \brief Paths found and run by the last solve(), every attempt.
+  int pathsRun() const { return paths_; }
   const SupportPlannerSettings& settings() const { return settings_; }
 
  private:
@@ -63,6 +83,7 @@ class SupportPlanner {
   std::string message_;
   long expansions_ = 0;
   double friction_use_ = 0.0;
+  int paths_ = 0;
 };
 
 }  // namespace rbsf::planner

@@ -32,8 +32,11 @@
 ///
 /// Deterministic: the same inputs give the same path. Analysis-time code (allocates).
 
+#include <array>
 #include <atomic>
+#include <cstdint>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "rbsf/planner/support_geometry.h"
@@ -91,11 +94,28 @@ class SupportSearch {
   std::vector<SupportStep> straightPivot(const SupportStep& from, double psi, double theta,
                                          double stroke);
 
+  /// \brief Keep later searches out of `step`'s lattice cell with its contact set, and out
+  ///        of the cells up to `radius` steps from it in psi, theta and X with that set (a
+  ///        stretch that cannot be run).
+  void block(const SupportStep& step, int radius = 0);
+  /// \brief The wall time of the next search() [s].
+  void setTimeLimit(double seconds) { settings_.time_limit = seconds; }
+  /// \brief Cells blocked so far.
+  std::size_t blockedCount() const { return blocked_.size(); }
+
   SupportGeometry& geometry() { return geometry_; }
   const SupportSearchSettings& settings() const { return settings_; }
 
  private:
   struct Node;
+  /// \brief A lattice cell and a contact set.
+  using CellKey = std::array<std::int32_t, 6>;
+  /// \brief FNV-1a over a CellKey.
+  struct CellKeyHash {
+    std::size_t operator()(const CellKey& k) const;
+  };
+  /// \brief The lattice cell of a step and its contact set (states are kept one per key).
+  CellKey key(const SupportStep& s) const;
   /// \brief The anchor of a pivot set at `pose` (the tip where it touches); true without
   ///        a pivot.
   bool anchorFor(const JigPose& pose, const ContactSet& set, PivotAnchor& anchor);
@@ -105,6 +125,7 @@ class SupportSearch {
   const RbsfModel& model_;
   SupportSearchSettings settings_;
   SupportGeometry geometry_;
+  std::unordered_set<CellKey, CellKeyHash> blocked_;
 };
 
 }  // namespace rbsf::planner

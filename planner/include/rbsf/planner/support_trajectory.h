@@ -28,6 +28,8 @@
 /// it), with the phases the simulator took. Every support holds the part by the joints
 /// alone, so the plan's law feeds back the joints (Plan::joint_feedback).
 
+#include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -50,18 +52,36 @@ struct SupportTiming {
   double knot_interval = 0.01;      ///< [s]
 };
 
-/// \brief One stretch of the reference: a run or a hand-over, for reports.
+/// \brief One stretch of the reference: a run or a hand-over.
 struct SupportRun {
   double start = 0.0, end = 0.0;  ///< [s]
   ContactSet set;                 ///< the set that carries the part
   bool handover = false;          ///< forces change at rest (or a finger moves alone)
+  /// \brief The path's steps it covers: a run's waypoints; a hand-over's two steps at the
+  ///        pose where the sets change.
+  std::size_t first_step = 0, last_step = 0;
+};
+
+/// \brief A stretch whose interpolated motion leaves the jig (a stroke or the base beyond
+///        its limits between waypoints that are within them).
+class SupportReferenceError : public std::runtime_error {
+ public:
+  SupportReferenceError(std::size_t first, std::size_t last);
+  std::size_t first_step, last_step;  ///< the stretch's steps (SupportRun)
 };
 
 /// \brief The reference of a support path (file comment); `runs`, when given, receives its
-///        stretches. \throws std::invalid_argument for an empty path.
+///        stretches. \throws std::invalid_argument for an empty path,
+///        SupportReferenceError for a stretch that leaves the jig.
 ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& geometry,
                                      const SupportPath& path, const SupportTiming& timing,
                                      std::vector<SupportRun>* runs = nullptr);
+
+/// \brief The time of the first sample of `plan` whose part pose is more than `position`
+///        [m] from `reference`'s or more than `angle` [rad] turned from it; negative when
+///        none is.
+double departureTime(const plan::Plan& plan, const ReferenceTrajectory& reference, double position,
+                     double angle);
 
 /// \brief Run `reference` closed loop on the nominal cell (the joint law on the exact state,
 ///        evaluated every `control_steps` simulator steps and held) and record it as a plan
