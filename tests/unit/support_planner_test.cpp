@@ -195,8 +195,12 @@ TEST(SupportTrajectory, TheDepartureIsTheFirstSampleOffTheReference) {
   for (std::size_t k = 0; k < runs.size(); ++k) {
     EXPECT_LE(runs[k].first_step, runs[k].last_step);
     EXPECT_LT(runs[k].last_step, path.steps.size());
-    if (k > 0) EXPECT_NEAR(runs[k].start, runs[k - 1].end, 1e-9);
-    if (!runs[k].handover) EXPECT_EQ(runs[k].set, path.steps[runs[k].first_step].set);
+    if (k > 0) {
+      EXPECT_NEAR(runs[k].start, runs[k - 1].end, 1e-9);
+    }
+    if (!runs[k].handover) {
+      EXPECT_EQ(runs[k].set, path.steps[runs[k].first_step].set);
+    }
   }
   Plan plan = closedLoopPlan(model, ref, SimulatorSettings{}, FeedbackSettings{}, kTurn15, 0.01,
                              2.0 * M_PI / 180, 10);
