@@ -110,12 +110,21 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
 
   // Stretches: runs and, between them, the hand-overs.
   std::vector<Stretch> stretches;
+  if (timing.settle_time > 0.0) {  // the start at rest under the first set's forces
+    Stretch hold;
+    hold.kind = Stretch::kRamp;
+    hold.set = hold.next = path.steps.front().set;
+    hold.base = path.steps.front().pose;
+    hold.tau_from = hold.tau_to = staticTau(hold.base, hold.set);
+    hold.duration = timing.settle_time;
+    stretches.push_back(hold);
+  }
   std::size_t i = 0;
   while (i < path.steps.size()) {
     std::size_t j = i;
     while (j + 1 < path.steps.size() && path.steps[j + 1].set == path.steps[i].set) ++j;
     const SupportStep& first = path.steps[i];
-    if (!stretches.empty()) {  // the hand-over from the previous set at this pose
+    if (i > 0 && !stretches.empty()) {  // the hand-over from the previous set at this pose
       const ContactSet from = stretches.back().set, to = first.set;
       const JigPose pose = first.pose;
       const std::uint32_t joins = to.touching & ~from.touching;
