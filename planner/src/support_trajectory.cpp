@@ -284,7 +284,10 @@ plan::Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& ref
         tau = held;
         return true;
       },
-      [](const SimState&, const StepReport&, const VecU&, long) { return true; });
+      [&](const SimState& now, const StepReport&, const VecU&, long n) {
+        // A part 1 m below its start is off the fingers: the rest would be a free fall.
+        return (n + 1) % control_steps != 0 || now.q[layout::kY] > start.q[layout::kY] - 1.0;
+      });
   plan.samples = simulateSegments(sim, plan.q0, plan.segments, sample_steps);
   const plan::PlanSample& last = plan.samples.back();
   const double dx = last.q[layout::kX] - goal.x, dy = last.q[layout::kY] - goal.y;

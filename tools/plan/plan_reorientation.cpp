@@ -224,7 +224,8 @@ int run(int argc, char** argv) {
     if (a.method == "support" && a.paths_run > 1)
       std::printf(
           "support path: sticking forces within %.2f of the friction cone, %ld "
-          "expansions, %d paths run (the others left their references)\n",
+          "expansions, %d paths run closed loop (kept: the first whose run ends on the goal, "
+          "else the one that followed its reference longest)\n",
           a.friction_use, a.expansions, a.paths_run);
     else if (a.method == "support")
       std::printf(
