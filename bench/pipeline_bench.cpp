@@ -29,7 +29,7 @@ using rbsf::bench::median;
 int run(int argc, char** argv) {
   int seeds = 8, first_seed = 1, trials = 32, knots = 100;
   double time_limit = 30.0;
-  std::string only, law = "both",
+  std::string only, law = "both", margins = "default",
                     suite = std::string(RBSF_SOURCE_DIR) + "/cells/problems/default.yaml";
   CLI::App app{
       "Pipeline benchmark: each problem and seed planned, refined and certified until a plan "
@@ -49,6 +49,10 @@ int run(int argc, char** argv) {
   app.add_option("--law", law, "part, joints or both (default)")
       ->check(CLI::IsMember({"part", "joints", "both"}));
   app.add_option("--problems", suite, "problem file (default cells/problems/default.yaml)");
+  app.add_option("--support-margins", margins,
+                 "default, or zero: the support planner's sticking forces anywhere in the "
+                 "friction cone and no normal-force floor")
+      ->check(CLI::IsMember({"default", "zero"}));
   rbsf::tools::parseCommandLine(app, argc, argv);
 
   const std::vector<rbsf::bench::BenchProblem> problems = rbsf::bench::loadProblemSuite(suite);
@@ -75,6 +79,10 @@ int run(int argc, char** argv) {
         s.planner.position_tolerance = bp.position_tolerance;
         s.planner.angle_tolerance = bp.angle_tolerance;
         s.certificate.trials = trials;
+        if (margins == "zero") {
+          s.support.friction_uses = {1.0};
+          s.support.search.support.balance.normal_margin = 0.0;
+        }
         s.refine = rbsf::trajopt::refinementStep(optimizer);
         const rbsf::planner::PipelineOutcome out =
             rbsf::planner::ReorientationPipeline(model, s).run(bp.problem);
