@@ -239,7 +239,9 @@ int run(int argc, char** argv) {
         plan.segments.size(), plan.duration(), plan.phaseSequence().c_str(), plan.planning_time,
         static_cast<unsigned long long>(plan.propagations));
     if (a.method == "support")
-      std::printf("optimisation: not run (support plans are not refined yet)\n");
+      std::printf(
+          "optimisation: not run (support plans are not refined: their refinements drop the "
+          "part)\n");
   };
   pipeline.on_attempt = [](const planner::PipelineAttempt& a, const plan::Plan&) {
     if (!a.found && a.method == "support")
