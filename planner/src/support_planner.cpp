@@ -42,7 +42,7 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
     SupportSearchSettings ss = settings_.search;
     ss.support.balance.friction_use = use;
     SupportSearch search(model_, ss);
-    for (int n = 0; n < settings_.max_paths && !runs; ++n) {
+    for (int n = 0; n < std::max(1, settings_.max_paths) && !runs; ++n) {
       if (timeLeft() <= 0.0) break;
       search.setTimeLimit(timeLeft());
       const SupportPath path =

@@ -36,8 +36,8 @@ struct SupportPlannerSettings {
   SimulatorSettings simulator;  ///< the plan's physics
   double time_limit = 30.0;     ///< search wall time, all attempts [s]
   /// \brief The sticking forces' share of the friction cone (BalanceSettings::friction_use)
-  ///        of each search attempt, the strongest margin first: the next is tried when a
-  ///        search finds no path within the time left.
+  ///        of each search attempt, the strongest margin first: the next is tried when an
+  ///        attempt ends without a path whose run ends on the goal.
   std::vector<double> friction_uses = {0.45, 0.6};
   /// \brief The nominal run departs when the part is this far from the reference [m]...
   ///        (half the goal tolerances; the certified 30 degree plan's run stays within
@@ -47,7 +47,7 @@ struct SupportPlannerSettings {
   double departure_angle = 1.0 * M_PI / 180;
   /// \brief Lattice steps (psi, theta, X) blocked around a departed stretch's waypoints.
   int block_radius = 1;
-  int max_paths = 40;                         ///< paths run per friction use (>= 1)
+  int max_paths = 40;                         ///< paths run per friction use (at least 1)
   double position_tolerance = 0.01;           ///< [m]
   double angle_tolerance = 2.0 * M_PI / 180;  ///< [rad]
   int sample_steps = 20;                      ///< plan samples every this many steps
