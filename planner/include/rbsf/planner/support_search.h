@@ -30,6 +30,10 @@
 /// start-tree state reaches the goal by a straight slide or by the pivot that puts the part
 /// on it (the anchor fixes the stroke and the base angle in closed form).
 ///
+/// Cells blocked with block() (a cell of the lattice with a contact set) are never entered,
+/// by a move, a root or the straight slides and pivots that join the trees, in this and
+/// later searches: the support planner blocks the stretches whose closed-loop runs failed.
+///
 /// Deterministic: the same inputs give the same path. Analysis-time code (allocates).
 
 #include <array>
