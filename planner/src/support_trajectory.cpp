@@ -285,8 +285,7 @@ plan::Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& ref
         return true;
       },
       [&](const SimState& now, const StepReport&, const VecU&, long n) {
-        // A part 1 m below its start is off the fingers: the rest would be a free fall.
-        return (n + 1) % control_steps != 0 || now.q[layout::kY] > start.q[layout::kY] - 1.0;
+        return (n + 1) % control_steps != 0 || !fellOff(now.q, start.q);  // at a segment's end
       });
   plan.samples = simulateSegments(sim, plan.q0, plan.segments, sample_steps);
   const plan::PlanSample& last = plan.samples.back();

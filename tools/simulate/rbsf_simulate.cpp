@@ -36,7 +36,6 @@ constexpr int kMaxPhasesPrinted = 40;   // longer phase sequences are summarised
 constexpr double kSvgFrameTime = 0.01;  // [s] between frames of --svg
 constexpr long kMaxSteps = 10000000;    // simulator steps of one run (10^4 s at 1 ms)
 constexpr long kMaxSvgFrames = 60000;   // --svg frames (10 minutes at 10 ms)
-constexpr double kFallDepth = 1.0;      // [m] below its start the part has surely fallen
 
 struct Options {
   std::string cell, start, theta = "0", controls, dt = "0.001", out, svg;
@@ -223,7 +222,7 @@ int run(int argc, char** argv) {
           if ((n + 1) % frame_stride == 0 || n == last) frames.push_back(sample);
         }
         if (InterruptFlag::raised()) return false;
-        if (now.q[layout::kY] < q0[layout::kY] - kFallDepth) {
+        if (fellOff(now.q, q0)) {
           fell_at = now.t;  // off the fingers: what follows is a free fall
           return false;
         }

@@ -36,6 +36,15 @@ long rollout(const Simulator& simulator, SimState& state, long steps, SimulatorW
   return n;
 }
 
+/// \brief Depth below its start at which a part has surely left the fingers [m].
+inline constexpr double kFallDepth = 1.0;
+
+/// \brief True when the part (configuration q) is more than kFallDepth below where it
+///        started (configuration start): what follows is a free fall, so runs stop there.
+inline bool fellOff(const VecQ& q, const VecQ& start) {
+  return q[layout::kY] < start[layout::kY] - kFallDepth;
+}
+
 /// \brief The sample of a step (trajectory_sample.h): the state after it, the input held
 ///        over it, its contacts' normal forces and its phase.
 inline TrajectorySample trajectorySample(const SimState& state, const StepReport& report,

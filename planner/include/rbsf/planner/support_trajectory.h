@@ -94,7 +94,7 @@ double departureTime(const plan::Plan& plan, const ReferenceTrajectory& referenc
 ///        evaluated every `control_steps` simulator steps and held) and record it as a plan
 ///        with joint_feedback set: a segment per evaluation, samples every `sample_steps`
 ///        steps, status "exact" when the part ends within the tolerances (position [m],
-///        angle [rad]) of `goal`. A run whose part falls 1 m below its start stops there.
+///        angle [rad]) of `goal`. A run whose part falls off (fellOff, rollout.h) stops there.
 plan::Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& reference,
                           const SimulatorSettings& simulator, const FeedbackSettings& feedback,
                           const Pose& goal, double position_tolerance, double angle_tolerance,
