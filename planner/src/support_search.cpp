@@ -40,18 +40,18 @@ std::size_t SupportSearch::CellKeyHash::operator()(const CellKey& k) const {
   return static_cast<std::size_t>(h);
 }
 
-SupportSearch::CellKey SupportSearch::key(const SupportStep& s) const {
+SupportSearch::CellKey SupportSearch::key(const JigPose& pose, const ContactSet& set) const {
   auto idx = [](double v, double step) { return static_cast<std::int32_t>(std::lround(v / step)); };
-  return CellKey{idx(s.pose.psi, settings_.angle_step),
-                 idx(s.pose.theta, settings_.angle_step),
-                 idx(s.pose.X, settings_.xy_step),
+  return CellKey{idx(pose.psi, settings_.angle_step),
+                 idx(pose.theta, settings_.angle_step),
+                 idx(pose.X, settings_.xy_step),
                  0,  // not Y: the height changes no balance (file comment)
-                 static_cast<std::int32_t>(s.set.touching),
-                 static_cast<std::int32_t>(s.set.sticking)};
+                 static_cast<std::int32_t>(set.touching),
+                 static_cast<std::int32_t>(set.sticking)};
 }
 
 void SupportSearch::block(const SupportStep& step, int radius) {
-  const CellKey k = key(step);
+  const CellKey k = key(step.pose, step.set);
   for (int i = -radius; i <= radius; ++i)
     for (int j = -radius; j <= radius; ++j)
       for (int l = -radius; l <= radius; ++l)
@@ -69,11 +69,7 @@ bool SupportSearch::anchorFor(const JigPose& pose, const ContactSet& set, PivotA
 
 bool SupportSearch::stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
                            const PivotAnchor& anchor, SupportStep& out) {
-  if (!blocked_.empty()) {
-    out.pose = pose;
-    out.set = set;
-    if (blocked_.count(key(out)) != 0) return false;
-  }
+  if (!blocked_.empty() && blocked_.count(key(pose, set)) != 0) return false;
   const std::optional<VecQ> q = geometry_.configuration(pose, set);
   if (!q) return false;
   const VecC slip = set == from.set ? geometry_.slipDirections(from.q, *q) : VecC();
@@ -212,7 +208,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
   };
   auto push = [&](int t, const SupportStep& s, double g, int parent) {
     Tree& tree = trees[t];
-    const CellKey k = key(s);
+    const CellKey k = key(s.pose, s.set);
     if (blocked_.count(k) != 0) return;
     const auto it = tree.best.find(k);
     if (it != tree.best.end() && it->second <= g + 1e-12) return;
@@ -384,7 +380,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     const int id = tree.open.top().second;
     tree.open.pop();
     const Node node = tree.nodes[id];
-    if (tree.best[key(node.step)] < node.g - 1e-12) continue;
+    if (tree.best[key(node.step.pose, node.step.set)] < node.g - 1e-12) continue;
     if (++result.expansions > settings_.max_expansions) break;
     if ((result.expansions & 255) == 0) {
       if (cancel != nullptr && cancel->load()) {

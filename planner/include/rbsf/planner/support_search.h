@@ -118,8 +118,8 @@ class SupportSearch {
   struct CellKeyHash {
     std::size_t operator()(const CellKey& k) const;
   };
-  /// \brief The lattice cell of a step and its contact set (states are kept one per key).
-  CellKey key(const SupportStep& s) const;
+  /// \brief The lattice cell of a pose and a contact set (states are kept one per key).
+  CellKey key(const JigPose& pose, const ContactSet& set) const;
   /// \brief The anchor of a pivot set at `pose` (the tip where it touches); true without
   ///        a pivot.
   bool anchorFor(const JigPose& pose, const ContactSet& set, PivotAnchor& anchor);
