@@ -36,7 +36,7 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
   timing.angular_speed = std::min(timing.angular_speed, 0.5 * limits.angular_speed);
 
   bool have = false, runs = false;
-  double best_departure = -1.0;  // of `plan`, the longest-running path's
+  double followed = -1.0;  // how long `plan`'s run followed its reference [s]
   std::string why;
   for (double use : settings_.friction_uses) {
     SupportSearchSettings ss = settings_.search;
@@ -71,9 +71,9 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
       const double departs =
           departureTime(run, reference, settings_.departure_position, settings_.departure_angle);
       const double lasted = departs < 0.0 ? reference.endTime() : departs;
-      if (runs || !have || lasted > best_departure) {
+      if (runs || !have || lasted > followed) {
         plan = std::move(run);
-        best_departure = lasted;
+        followed = lasted;
         friction_use_ = use;
         have = true;
       }
