@@ -221,17 +221,16 @@ int run(int argc, char** argv) {
       if (!InterruptFlag::raised()) printOptimisation(r);
     });
   pipeline.on_found = [](const planner::PipelineAttempt& a, const plan::Plan& plan) {
-    if (a.method == "support" && a.paths_run > 1)
-      std::printf(
-          "support path: sticking forces within %.2f of the friction cone, %ld "
-          "expansions, %d paths run closed loop (kept: the first whose run ends on the goal, "
-          "else the one that followed its reference longest)\n",
-          a.friction_use, a.expansions, a.paths_run);
-    else if (a.method == "support")
-      std::printf(
-          "support path: sticking forces within %.2f of the friction cone, %ld "
-          "expansions\n",
-          a.friction_use, a.expansions);
+    if (a.method == "support") {
+      std::printf("support path: sticking forces within %.2f of the friction cone, %ld expansions",
+                  a.friction_use, a.expansions);
+      if (a.paths_run > 1)
+        std::printf(
+            ", %d paths run closed loop (kept: the first whose run ends on the goal, else the "
+            "one that followed its reference longest)",
+            a.paths_run);
+      std::printf("\n");
+    }
     if (plan.status != plan::PlanStatus::kExact) return;
     std::printf(
         "exact plan: %zu segments, %.3f s of motion, phases %s; planned in %.3f s, %llu "
