@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <stdexcept>
 
 #include "rbsf/dynamics/control_law.h"
@@ -93,14 +94,19 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
   ModelData data(m);
 
   // The configuration of a stretch at progress s in [0, 1].
-  auto configuration = [&](const Stretch& r, double s) -> VecQ {
+  // Nothing when the stretch leaves the jig there.
+  auto reach = [&](const Stretch& r, double s) -> std::optional<VecQ> {
     JigPose pose = r.base;
-    ContactSet set = r.set;
     if (r.kind == Stretch::kRun)
       pose = runPose(r, geometry, catmullRom(r.points, s * (r.points.size() - 1.0)));
-    std::optional<VecQ> q = geometry.configuration(pose, set, false);
+    std::optional<VecQ> q = geometry.configuration(pose, r.set, false);
+    if (q && r.kind == Stretch::kFinger)
+      (*q)[layout::stroke(r.finger)] = r.from + s * (r.to - r.from);
+    return q;
+  };
+  auto configuration = [&](const Stretch& r, double s) -> VecQ {
+    const std::optional<VecQ> q = reach(r, s);
     if (!q) throw SupportReferenceError(r.first_step, r.last_step);
-    if (r.kind == Stretch::kFinger) (*q)[layout::stroke(r.finger)] = r.from + s * (r.to - r.from);
     return *q;
   };
   auto staticTau = [&](const JigPose& pose, const ContactSet& set) {
@@ -119,6 +125,51 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
     hold.duration = timing.settle_time;
     stretches.push_back(hold);
   }
+  // The run of steps a..b (one set), timed by its lengths along the spline. Where the spline
+  // between valid waypoints leaves the jig, the run is split there into runs that rest at
+  // the waypoints around the interval left, whose own run (two points: a straight line, the
+  // motion the search checked) stays inside.
+  std::function<void(std::size_t, std::size_t)> addRun = [&](std::size_t a, std::size_t b) {
+    const SupportStep& first = path.steps[a];
+    Stretch r;
+    r.kind = Stretch::kRun;
+    r.set = first.set;
+    r.base = first.pose;
+    r.anchor = first.anchor;
+    r.first_step = a;
+    r.last_step = b;
+    for (std::size_t k = a; k <= b; ++k) r.points.push_back(runCoordinates(path.steps[k]));
+    // Lengths along the spline: the part's travel and turn, the base's, the strokes'.
+    double travel = 0.0, turn = 0.0, base = 0.0, stroke = 0.0;
+    const int fine = 8 * static_cast<int>(r.points.size());
+    VecQ prev = configuration(r, 0.0);
+    for (int k = 1; k <= fine; ++k) {
+      const double s = static_cast<double>(k) / fine;
+      const std::optional<VecQ> q = reach(r, s);
+      if (!q) {
+        if (b == a + 1) throw SupportReferenceError(a, b);
+        const std::size_t left =
+            a + std::min(static_cast<std::size_t>(s * (b - a)), b - a - 1);  // interval's start
+        if (left > a) addRun(a, left);
+        addRun(left, left + 1);
+        if (b > left + 1) addRun(left + 1, b);
+        return;
+      }
+      const VecQ dq = *q - prev;
+      travel += std::hypot(dq[layout::kX], dq[layout::kY]);
+      turn += std::abs(dq[layout::kPhi]);
+      base += std::abs(dq[layout::kTheta]);
+      stroke += dq.tail(m).cwiseAbs().maxCoeff();
+      prev = *q;
+    }
+    const double peak = 1.875, peak_acc = 5.7735;
+    const double longest = std::max({travel, turn, base});
+    r.duration = std::max({timing.min_run_time, peak * travel / timing.part_speed,
+                           peak * std::max(turn, base) / timing.angular_speed,
+                           peak * stroke / timing.stroke_speed,
+                           std::sqrt(peak_acc * longest / timing.part_acceleration)});
+    stretches.push_back(r);
+  };
   std::size_t i = 0;
   while (i < path.steps.size()) {
     std::size_t j = i;
@@ -163,36 +214,7 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
         if ((leaves >> f) & 1u)
           moveFinger(to, f, (*q_from)[layout::stroke(f)], cell.fingers[f].stroke_min);
     }
-    if (j > i) {  // a run (a set held at one pose alone has none)
-      Stretch r;
-      r.kind = Stretch::kRun;
-      r.set = first.set;
-      r.base = first.pose;
-      r.anchor = first.anchor;
-      r.first_step = i;
-      r.last_step = j;
-      for (std::size_t k = i; k <= j; ++k) r.points.push_back(runCoordinates(path.steps[k]));
-      // Lengths along the spline: the part's travel and turn, the base's, the strokes'.
-      double travel = 0.0, turn = 0.0, base = 0.0, stroke = 0.0;
-      const int fine = 8 * static_cast<int>(r.points.size());
-      VecQ prev = configuration(r, 0.0);
-      for (int k = 1; k <= fine; ++k) {
-        const VecQ q = configuration(r, static_cast<double>(k) / fine);
-        const VecQ dq = q - prev;
-        travel += std::hypot(dq[layout::kX], dq[layout::kY]);
-        turn += std::abs(dq[layout::kPhi]);
-        base += std::abs(dq[layout::kTheta]);
-        stroke += dq.tail(m).cwiseAbs().maxCoeff();
-        prev = q;
-      }
-      const double peak = 1.875, peak_acc = 5.7735;
-      const double longest = std::max({travel, turn, base});
-      r.duration = std::max({timing.min_run_time, peak * travel / timing.part_speed,
-                             peak * std::max(turn, base) / timing.angular_speed,
-                             peak * stroke / timing.stroke_speed,
-                             std::sqrt(peak_acc * longest / timing.part_acceleration)});
-      stretches.push_back(r);
-    }
+    if (j > i) addRun(i, j);  // a set held at one pose alone has no run
     i = j + 1;
   }
 

@@ -213,6 +213,61 @@ TEST(SupportTrajectory, TheDepartureIsTheFirstSampleOffTheReference) {
   EXPECT_LT(departureTime(plan, ref, 0.005, 1.5 * M_PI / 180), 0.0);
 }
 
+// A run's spline through valid waypoints can leave the jig at a corner (Catmull-Rom
+// overshoots by 4/27 of half the step before it); the reference then rests at the waypoints
+// around that interval and goes straight across it.
+TEST(SupportTrajectory, ARunWhoseSplineLeavesTheJigRestsAroundTheIntervalInstead) {
+  const RbsfModel& model = defaultModel();
+  SupportSearch search(model, searchSettings());
+  SupportGeometry& geometry = search.geometry();
+  const ContactSet slide{0b111u, 0u};
+  const JigPose start = JigPose::fromWorld(kStart, 0.0);
+  auto reaches = [&](double X) {
+    JigPose p = start;
+    p.X = X;
+    return geometry.configuration(p, slide, false).has_value();
+  };
+  ASSERT_TRUE(reaches(start.X));
+  // The edge X* of the sliding set's reach, moving the part along the base's X axis.
+  double lo = start.X, hi = start.X;
+  while (reaches(hi) && hi < start.X + 1.0) hi += 0.005;
+  ASSERT_FALSE(reaches(hi));
+  for (int k = 0; k < 60; ++k) (reaches(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+  // Waypoints: a 2 cm step to 0.5 mm inside the edge, then two base turns there. The spline
+  // overshoots X by 0.074 x 2 cm = 1.5 mm in the second interval.
+  const double edge = lo, inside = edge - 0.0005, step = 0.02;
+  ASSERT_TRUE(reaches(inside - step));
+  SupportPath path;
+  path.found = true;
+  for (const auto& [X, theta] : {std::pair{inside - step, 0.0}, std::pair{inside, 0.0},
+                                 std::pair{inside, 0.05}, std::pair{inside, 0.10}}) {
+    SupportStep s;
+    s.pose = start;
+    s.pose.X = X;
+    s.pose.theta = theta;
+    s.set = slide;
+    s.q = *geometry.configuration(s.pose, slide, false);
+    path.steps.push_back(s);
+  }
+  std::vector<SupportRun> runs;
+  const ReferenceTrajectory ref = supportReference(model, geometry, path, {}, &runs);
+  std::vector<std::pair<std::size_t, std::size_t>> spans;
+  for (const SupportRun& r : runs)
+    if (!r.handover) spans.emplace_back(r.first_step, r.last_step);
+  const std::vector<std::pair<std::size_t, std::size_t>> expected{{0, 1}, {1, 2}, {2, 3}};
+  EXPECT_EQ(spans, expected);
+  ReferenceSample r;
+  for (const SupportRun& run : runs) {  // at rest where the runs meet
+    ref.sample(run.end, r);
+    EXPECT_LT(r.v.norm(), 1e-6) << "at t = " << run.end;
+  }
+  for (double t = ref.startTime(); t <= ref.endTime(); t += 0.005) {  // inside the reach
+    ref.sample(t, r);
+    const Pose w{r.q[layout::kX], r.q[layout::kY], r.q[layout::kPhi]};
+    EXPECT_LE(JigPose::fromWorld(w, r.q[layout::kTheta]).X, edge + 1e-9) << "at t = " << t;
+  }
+}
+
 TEST(SupportPlanner, PathsWhoseRunsMissTheGoalAreBlockedAndTheLongestRunningIsKept) {
   // A goal tolerance no run can keep: every path found is run, a stretch of it blocked and
   // the search repeated, max_paths times; the plan kept is approximate.

@@ -10,7 +10,10 @@
 /// the quintic rest-to-rest law s(t) = 10 u^3 - 15 u^4 + 6 u^5 (peak rate 1.875 x the
 /// mean), slow enough that the part's speed stays below `part_speed`, its and the base's
 /// angular speed below `angular_speed`, the strokes' below `stroke_speed`, and every peak
-/// acceleration below `part_acceleration` (m/s^2, rad/s^2 alike).
+/// acceleration below `part_acceleration` (m/s^2, rad/s^2 alike). Where a run's spline
+/// leaves the jig between valid waypoints (it overshoots at corners), the run is split: the
+/// part rests at the waypoints around that interval and crosses it on a straight line, the
+/// motion the search checked.
 ///
 /// **Settling.** The reference starts with the part at rest for `settle_time` under the
 /// input of the first set's balance.
@@ -69,8 +72,8 @@ struct SupportRun {
   std::size_t first_step = 0, last_step = 0;
 };
 
-/// \brief A stretch whose interpolated motion leaves the jig (a stroke or the base beyond
-///        its limits between waypoints that are within them).
+/// \brief A stretch whose motion leaves the jig between waypoints that are within it (a
+///        touching tip's line misses the part or meets it too obliquely), even straight.
 class SupportReferenceError : public std::runtime_error {
  public:
   SupportReferenceError(std::size_t first, std::size_t last);
