@@ -278,6 +278,25 @@ bool Shape::entryAlongLine(const Vec2& origin, const Vec2& dir, double& s, doubl
   return true;
 }
 
+namespace {
+
+// The first crossing of origin + s dir with c(xi) = e + (a cos xi, b sin xi): in the scaled
+// frame where the ellipse is the unit circle, |P + s D|^2 = 1 is a quadratic in s.
+bool ellipseEntry(const Vec2& e, double a, double b, const Vec2& origin, const Vec2& dir, double& s,
+                  double& xi) {
+  const Vec2 P((origin.x() - e.x()) / a, (origin.y() - e.y()) / b);
+  const Vec2 D(dir.x() / a, dir.y() / b);
+  const double dd = D.squaredNorm(), pd = P.dot(D);
+  const double disc = pd * pd - dd * (P.squaredNorm() - 1.0);
+  if (!(disc >= 0.0) || !(dd > 0.0)) return false;
+  s = (-pd - std::sqrt(disc)) / dd;
+  const Vec2 hit = P + s * D;
+  xi = Shape::wrap(std::atan2(hit.y(), hit.x()));
+  return true;
+}
+
+}  // namespace
+
 // ---------------------------------------------------------------------------------------------
 // Ellipse
 
@@ -292,6 +311,11 @@ void EllipseShape::derivatives(double xi, Vec2& c, Vec2& dc, Vec2& ddc) const {
   c = center_ + Vec2(a_ * cs, b_ * sn);
   dc = Vec2(-a_ * sn, b_ * cs);
   ddc = Vec2(-a_ * cs, -b_ * sn);
+}
+
+bool EllipseShape::entryAlongLine(const Vec2& origin, const Vec2& dir, double& s,
+                                  double& xi) const {
+  return ellipseEntry(center_, a_, b_, origin, dir, s, xi);
 }
 
 double EllipseShape::boundingRadius() const { return center_.norm() + std::max(a_, b_); }
@@ -309,6 +333,10 @@ void CircleShape::derivatives(double xi, Vec2& c, Vec2& dc, Vec2& ddc) const {
   c = center_ + r_ * Vec2(cs, sn);
   dc = r_ * Vec2(-sn, cs);
   ddc = -r_ * Vec2(cs, sn);
+}
+
+bool CircleShape::entryAlongLine(const Vec2& origin, const Vec2& dir, double& s, double& xi) const {
+  return ellipseEntry(center_, r_, r_, origin, dir, s, xi);
 }
 
 double CircleShape::boundingRadius() const { return center_.norm() + r_; }

@@ -462,5 +462,37 @@ TEST(Shape, EntryAlongLineHitsBoundaryFirst) {
   EXPECT_NEAR(xi, std::acos(x_hit / 0.3), 1e-9);
 }
 
+// Ellipses and circles find the entry by a quadratic; the generic boundary scan is an
+// independent computation of the same point.
+TEST(Shape, ClosedFormEntryAgreesWithTheBoundaryScan) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), angle(0.0, kTwoPi);
+  int hits = 0, misses = 0;
+  for (Kind kind : {Kind::kEllipse, Kind::kCircle}) {
+    for (int shape = 0; shape < 6; ++shape) {
+      auto sh = randomShape(kind, rng);
+      const double r = sh->boundingRadius();
+      for (int i = 0; i < 200; ++i) {
+        const double a = angle(rng);
+        const Vec2 dir(std::cos(a), std::sin(a));
+        const Vec2 origin = 1.5 * r * Vec2(unit(rng), unit(rng));
+        double s1 = NAN, xi1 = NAN, s2 = NAN, xi2 = NAN;
+        const bool closed = sh->entryAlongLine(origin, dir, s1, xi1);
+        const bool scanned = sh->Shape::entryAlongLine(origin, dir, s2, xi2);
+        ASSERT_EQ(closed, scanned) << "shape " << shape << " line " << i;
+        if (!closed) {
+          ++misses;
+          continue;
+        }
+        ++hits;
+        EXPECT_NEAR(s1, s2, 1e-9);
+        EXPECT_NEAR(std::remainder(xi1 - xi2, kTwoPi), 0.0, 1e-7);
+      }
+    }
+  }
+  EXPECT_GT(hits, 300);
+  EXPECT_GT(misses, 100);
+}
+
 }  // namespace
 }  // namespace rbsf

@@ -76,8 +76,10 @@ class Shape {
 
   /// \brief First boundary crossing of the line origin + s * dir (dir a unit vector)
   ///        entering the shape, i.e. the smallest s with origin + s dir on the boundary.
-  /// \return false when the line misses the shape.
-  bool entryAlongLine(const Vec2& origin, const Vec2& dir, double& s, double& xi) const;
+  /// \return false when the line misses the shape. The generic version scans the
+  ///         boundary for the arcs between the points where c' is parallel to dir and
+  ///         finds one crossing on each; ellipses and circles solve a quadratic.
+  virtual bool entryAlongLine(const Vec2& origin, const Vec2& dir, double& s, double& xi) const;
 
   /// \brief Wrap a parameter into [0, 2 pi).
   static double wrap(double xi);
@@ -99,6 +101,8 @@ class EllipseShape final : public Shape {
   double minCurvatureRadius() const override {
     return std::min(a_, b_) * std::min(a_, b_) / std::max(a_, b_);
   }
+  /// \brief The smaller root s of |diag(1/a, 1/b) (origin + s dir - e)|^2 = 1.
+  bool entryAlongLine(const Vec2& origin, const Vec2& dir, double& s, double& xi) const override;
   double a() const { return a_; }
   double b() const { return b_; }
   const Vec2& center() const { return center_; }
@@ -121,6 +125,8 @@ class CircleShape final : public Shape {
   ClosestPoint closest(const Vec2& p) const override;
   ClosestPoint closestNear(const Vec2& p, double xi_hint,
                            BoundaryPoint* at = nullptr) const override;
+  /// \brief The smaller root s of |origin + s dir - e|^2 = r^2.
+  bool entryAlongLine(const Vec2& origin, const Vec2& dir, double& s, double& xi) const override;
   double radius() const { return r_; }
   const Vec2& center() const { return center_; }
 
