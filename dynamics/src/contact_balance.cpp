@@ -39,7 +39,8 @@ ContactBalance ContactBalancer::solve(const VecQ& q, const VecQ& v, const VecQ& 
   const int m = model_.numFingers();
   VecC slip = VecC::Zero(m);
   for (int i = 0; i < m; ++i) slip[i] = data.T.col(i).dot(v);
-  return solveWith(q, vdot, set, data, slip);
+  return solveWith(q, vdot, set, data, slip, model_.cell().friction.mu_kinetic,
+                   settings_.slip_rate);
 }
 
 ContactBalance ContactBalancer::statics(const VecQ& q, const ContactSet& set, ModelData& data,
@@ -48,7 +49,17 @@ ContactBalance ContactBalancer::statics(const VecQ& q, const ContactSet& set, Mo
   const VecQ zero = VecQ::Zero(q.size());
   model_.bias(q, zero, data.bias);
   const VecC s = slip.size() == model_.numFingers() ? slip : VecC::Zero(model_.numFingers());
-  return solveWith(q, zero, set, data, s);
+  return solveWith(q, zero, set, data, s, model_.cell().friction.mu_kinetic, settings_.slip_rate);
+}
+
+ContactBalance ContactBalancer::breakaway(const VecQ& q, const ContactSet& set, ModelData& data,
+                                          const VecC& slip) const {
+  model_.updateContacts(q, data);
+  const VecQ zero = VecQ::Zero(q.size());
+  model_.bias(q, zero, data.bias);
+  // Any slip at all must first break the contact loose: the smallest one counts.
+  return solveWith(q, zero, set, data, slip, settings_.breakaway * model_.cell().friction.mu_static,
+                   1e-9);
 }
 
 bool ContactBalancer::determined(const ContactSet& set, const ModelData& data) const {
@@ -73,7 +84,8 @@ bool ContactBalancer::determined(const ContactSet& set, const ModelData& data) c
 }
 
 ContactBalance ContactBalancer::solveWith(const VecQ& q, const VecQ& vdot, const ContactSet& set,
-                                          const ModelData& data, const VecC& slip) const {
+                                          const ModelData& data, const VecC& slip,
+                                          double slide_friction, double min_slip) const {
   const int m = model_.numFingers(), nq = model_.configDim(), nu = model_.controlDim();
   const Cell& cell = model_.cell();
   ContactBalance out;
@@ -89,14 +101,14 @@ ContactBalance ContactBalancer::solveWith(const VecQ& q, const VecQ& vdot, const
   Eigen::MatrixXd N(nq, nl);
   Eigen::VectorXi finger(nl), normal_col(nl);  // normal_col: a tangent's normal column
   int c = 0;
-  const double mu_k = cell.friction.mu_kinetic;
+  const double mu_slide = slide_friction;
   auto kinetic = [&](int i) {
-    return !set.sticks(i) && mu_k > 0.0 && std::abs(slip[i]) > settings_.slip_rate;
+    return !set.sticks(i) && mu_slide > 0.0 && std::abs(slip[i]) > min_slip;
   };
   for (int i = 0; i < m; ++i) {
     if (!set.touches(i)) continue;
     N.col(c) = data.G1.col(i);
-    if (kinetic(i)) N.col(c) -= mu_k * (slip[i] > 0.0 ? 1.0 : -1.0) * data.T.col(i);
+    if (kinetic(i)) N.col(c) -= mu_slide * (slip[i] > 0.0 ? 1.0 : -1.0) * data.T.col(i);
     normal_col[c] = -1;
     finger[c++] = i;
   }
@@ -163,8 +175,9 @@ ContactBalance ContactBalancer::solveWith(const VecQ& q, const VecQ& vdot, const
   out.balanced = out.margin >= 0.0;
   Eigen::VectorXd lambda = x.head(nl);
   for (int j = 0; j < nl; ++j) (j < nt ? out.fn : out.ft)[finger[j]] = lambda[j];
-  for (int i = 0; i < m; ++i)  // kinetic friction of the sliding contacts, along t_i
-    if (set.touches(i) && kinetic(i)) out.ft[i] = -mu_k * (slip[i] > 0.0 ? 1.0 : -1.0) * out.fn[i];
+  for (int i = 0; i < m; ++i)  // friction of the sliding contacts, along t_i
+    if (set.touches(i) && kinetic(i))
+      out.ft[i] = -mu_slide * (slip[i] > 0.0 ? 1.0 : -1.0) * out.fn[i];
   const Eigen::VectorXd gen = b - N * lambda;
   for (int j = 0; j < nu; ++j) out.tau[j] = gen[layout::inputToConfig(j)];
   return out;

@@ -97,6 +97,11 @@ Support SupportGeometry::check(const JigPose& pose, const ContactSet& set, const
   return out;
 }
 
+bool SupportGeometry::breaksAway(const VecQ& q, const ContactSet& set, const VecC& slip) {
+  if (set.sticking == 0 || set.sticking == set.touching) return true;
+  return balancer_.breakaway(q, set, data_, slip).balanced;
+}
+
 VecC SupportGeometry::slipDirections(const VecQ& q0, const VecQ& q1) {
   model_.updateContacts(q0, data_);
   const VecQ dq = q1 - q0;

@@ -75,11 +75,15 @@ bool SupportSearch::stepTo(const SupportStep& from, const JigPose& pose, const C
   const VecC slip = set == from.set ? geometry_.slipDirections(from.q, *q) : VecC();
   const Support s = geometry_.check(pose, set, slip);
   if (!s.valid) return false;
+  if (set == from.set && from.rest && !backward_ && settings_.support.require_breakaway &&
+      !geometry_.breaksAway(from.q, set, slip))
+    return false;
   out.pose = pose;
   out.set = set;
   out.anchor = anchor;
   out.q = s.q;
   out.margin = s.margin;
+  out.rest = set != from.set;
   return true;
 }
 
@@ -236,6 +240,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
       s.set = set;
       s.q = sup.q;
       s.margin = sup.margin;
+      s.rest = true;
       push(t, s, 0.0, -1);
     }
   };
@@ -428,13 +433,23 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     };
     auto tryMove = [&](const JigPose& pose, const ContactSet& set, const PivotAnchor& anchor) {
       SupportStep mid;
-      if (met || !stepTo(s, lerp(s.pose, pose, 0.5), set, anchor, mid)) return;
-      if (!stepTo(mid, pose, set, anchor, next)) return;
-      add(node.g + moveCost(s, next));
+      backward_ = t == 1;
+      const bool valid = !met && stepTo(s, lerp(s.pose, pose, 0.5), set, anchor, mid) &&
+                         stepTo(mid, pose, set, anchor, next);
+      backward_ = false;  // the joins that add() may try run forwards in time
+      if (valid) add(node.g + moveCost(s, next));
     };
+    // In the goal tree a switch away from s starts (in time) the run from s towards the
+    // node s came from: its sliders must break away there.
+    bool can_leave = true;
+    if (t == 1 && node.parent >= 0 && settings_.support.require_breakaway) {
+      const SupportStep& towards = tree.nodes[node.parent].step;
+      if (towards.set == s.set)
+        can_leave = geometry_.breaksAway(s.q, s.set, geometry_.slipDirections(s.q, towards.q));
+    }
     auto trySwitch = [&](const ContactSet& set) {
       PivotAnchor anchor;
-      if (met || !anchorFor(s.pose, set, anchor)) return;
+      if (met || !can_leave || !anchorFor(s.pose, set, anchor)) return;
       if (set.pivot() >= 0 && set.pivot() == s.set.pivot()) anchor = s.anchor;
       if (stepTo(s, s.pose, set, anchor, next)) add(node.g + settings_.switch_cost);
     };

@@ -401,12 +401,13 @@ TEST(PlanReorientation, UncertifiedPlansAreFollowedByTheNextSeedAndTheBestIsWrit
 }
 
 TEST(PlanReorientation, ASupportPathWhoseRunDropsThePartIsApproximateAndSaysSo) {
-  // +30 deg: the short way has no support path; the long way round's closed-loop run loses
-  // the part. Exit 3, the drop said in metres and degrees, the plan written as approximate
-  // and refused by its certificate (motion outside the limits, not held by the joints).
+  // The hard suite's box on four fingers, turned 90 deg: the support paths found within the
+  // time limit all have closed-loop runs that lose the part. Exit 3, the drop said in metres
+  // and degrees, the plan written as approximate and refused by its certificate (motion
+  // outside the limits, not held by the joints).
   const std::string out = writeTemp("support_drop.json", "");
   const Result r = run(kPlan + " --cell " + kCells +
-                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,30deg --planner support"
+                       "box4.yaml --start 0,0.42,0 --goal 0,0.42,-90deg --planner support"
                        " --quiet --trials 2 --out " +
                        out);
   ASSERT_EQ(r.status, 3) << r.out << r.err;

@@ -1,8 +1,9 @@
 // The contact forces of a contact set (contact_balance.h): they meet every row of the
 // dynamics with the input they return; a balanced sliding support is an equilibrium of the
 // phase-U LCP (an independent computation); the margin is the least slack of the forces;
-// holding at rest agrees with holdingTorques(); two frictionless tips, or normals that
-// meet in one point, do not fix the part.
+// at breakaway the sliders pull mu_s f_n against their slip; holding at rest agrees with
+// holdingTorques(); two frictionless tips, or normals that meet in one point, do not fix the
+// part.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -103,6 +104,45 @@ TEST(ContactBalance, TheMarginIsTheLeastSlackOfTheForces) {
   slack.push_back((mu * p.fn[1] - std::abs(p.ft[1])) / W);
   EXPECT_NEAR(p.margin, *std::min_element(slack.begin(), slack.end()), 1e-9);
   EXPECT_GE(p.margin, std::min(u.margin, mu * u.fn[1] / W) - 1e-9);
+}
+
+TEST(ContactBalance, AtBreakawayTheSlidersPullTheStaticLimitAndTheStickersKeepTheirCones) {
+  const RbsfModel model(test::makeCell(ShapeKind::kEllipse, 3));
+  BalanceSettings s;
+  const ContactBalancer balancer(model, s);
+  const VecQ q = slidingPose(model);
+  ModelData data(model.numFingers());
+  const double mu_s = model.cell().friction.mu_static;
+  const double W = model.cell().object.mass * model.cell().gravity;
+  const VecQ zero = VecQ::Zero(q.size());
+  int solved = 0;
+  for (int pivot = 0; pivot < 3; ++pivot) {
+    for (const double sign : {-1.0, 1.0}) {
+      const ContactSet set{kAll, 1u << pivot};
+      VecC slip(3);
+      slip << 0.004 * sign, -0.006 * sign, 0.005 * sign;
+      slip[pivot] = 0.0;
+      const ContactBalance b = balancer.breakaway(q, set, data, slip);
+      if (!b.solvable) continue;
+      ++solved;
+      EXPECT_LT(residual(model, q, zero, zero, b).cwiseAbs().maxCoeff(), 1e-8);
+      for (int i = 0; i < 3; ++i) {
+        if (i == pivot) {  // inside its cone by the margin (outside when it is negative)
+          EXPECT_LE(std::abs(b.ft[i]), s.friction_use * mu_s * b.fn[i] - b.margin * W + 1e-9);
+        } else {  // against the slip, at breakaway x mu_s f_n
+          EXPECT_NEAR(b.ft[i], -(slip[i] > 0.0 ? 1.0 : -1.0) * s.breakaway * mu_s * b.fn[i],
+                      1e-9);
+        }
+      }
+      // Without the sliders' pull it is the static balance of frictionless slides.
+      BalanceSettings none = s;
+      none.breakaway = 0.0;
+      const ContactBalance free = ContactBalancer(model, none).breakaway(q, set, data, slip);
+      const ContactBalance still = balancer.statics(q, set, data);
+      EXPECT_NEAR(free.margin, still.margin, 1e-9);
+    }
+  }
+  EXPECT_GE(solved, 3);
 }
 
 TEST(ContactBalance, HoldingAtRestAgreesWithHoldingTorques) {

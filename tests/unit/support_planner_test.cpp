@@ -154,6 +154,38 @@ TEST(SupportTrajectory, ThePlanIsExactSlowJointFedBackAndEndsAtRestOnTheGoal) {
   EXPECT_LT(long_free.longest_free_start, 1.0);
 }
 
+/// Whether every run of `path` with sticking and sliding contacts breaks away at its first
+/// step, with the slip of its first move.
+bool everyRunBreaksAway(SupportGeometry& geometry, const SupportPath& path) {
+  for (std::size_t i = 0; i + 1 < path.steps.size(); ++i) {
+    const SupportStep& a = path.steps[i];
+    const SupportStep& b = path.steps[i + 1];
+    const bool starts = i == 0 || path.steps[i - 1].set != a.set;
+    if (starts && a.set == b.set &&
+        !geometry.breaksAway(a.q, a.set, geometry.slipDirections(a.q, b.q)))
+      return false;
+  }
+  return true;
+}
+
+TEST(SupportSearch, EveryRunWithStickingAndSlidingContactsBreaksAwayWhereItStarts) {
+  const RbsfModel& model = defaultModel();
+  for (const Pose& goal : {kTurn15, Pose{0.1, 0.40, -30.0 * M_PI / 180}}) {
+    SupportSearch search(model, searchSettings());
+    const SupportPath path = search.search(kStart, 0.0, goal);
+    ASSERT_TRUE(path.found);
+    EXPECT_TRUE(everyRunBreaksAway(search.geometry(), path)) << goal.phi;
+  }
+  // Not a vacuous check: without it, the 60 degree turn's path pivots about a lightly loaded
+  // tip beside a heavily loaded slider that cannot break loose first.
+  SupportSearchSettings settings = searchSettings();
+  settings.support.require_breakaway = false;
+  SupportSearch search(model, settings);
+  const SupportPath path = search.search(kStart, 0.0, Pose{0.1, 0.40, -60.0 * M_PI / 180});
+  ASSERT_TRUE(path.found);
+  EXPECT_FALSE(everyRunBreaksAway(search.geometry(), path));
+}
+
 TEST(SupportSearch, ABlockedCellIsAvoidedByTheNextSearch) {
   const RbsfModel& model = defaultModel();
   SupportSearchSettings s = searchSettings();

@@ -80,6 +80,10 @@ struct BalanceSettings {
   double friction_use = 0.45;      ///< sticking |f_t| <= this x mu_s f_n
   double determined_ratio = 0.05;  ///< smallest / largest singular value of the object rows
   double slip_rate = 1e-4;         ///< |T_i^T v| above this picks the kinetic friction sign [m/s]
+  /// \brief A slider starting from rest must be able to pull this x mu_s f_n (breakaway())
+  ///        while the sticking contacts keep friction_use: 1.2 (the certificate's +20 % mu_s
+  ///        draws) refuses the certified 30 degree plan's pivot, which holds those draws.
+  double breakaway = 1.0;
 };
 
 /// \brief Forces, input and margins of one contact set at one state.
@@ -108,6 +112,15 @@ class ContactBalancer {
   ContactBalance statics(const VecQ& q, const ContactSet& set, ModelData& data,
                          const VecC& slip = VecC()) const;
 
+  /// \brief The static case at the instant a motion in `set` starts from rest: each sliding
+  ///        contact with a planned slip (`slip`, as in statics()) is still held by static
+  ///        friction and must break away first, so its tangential force is at
+  ///        `breakaway` mu_s f_n against its slip (however small) while the sticking
+  ///        contacts stay inside their cones. Balanced: the sliders break away before any sticking
+  ///        contact does.
+  ContactBalance breakaway(const VecQ& q, const ContactSet& set, ModelData& data,
+                           const VecC& slip) const;
+
   /// \brief Whether the rows of `set` fix the part with the joints held (file comment), at
   ///        the contacts in `data`.
   bool determined(const ContactSet& set, const ModelData& data) const;
@@ -115,8 +128,11 @@ class ContactBalancer {
   const BalanceSettings& settings() const { return settings_; }
 
  private:
+  /// `slide_friction`: the coefficient on the sliding contacts whose |slip| exceeds
+  /// `min_slip` (mu_k in motion).
   ContactBalance solveWith(const VecQ& q, const VecQ& vdot, const ContactSet& set,
-                           const ModelData& data, const VecC& slip) const;
+                           const ModelData& data, const VecC& slip, double slide_friction,
+                           double min_slip) const;
 
   const RbsfModel& model_;
   BalanceSettings settings_;

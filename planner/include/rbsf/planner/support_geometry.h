@@ -54,7 +54,10 @@ struct SupportSettings {
   double min_normal_cosine = 0.35;   ///< sliding contacts' normals against the finger axis
   double min_sticking_cosine = 0.1;  ///< sticking contacts' (friction carries the rest)
   bool require_determined = true;    ///< the joints alone must fix the part
-  BalanceSettings balance;           ///< force margins
+  /// \brief A run that starts from rest with sticking and sliding contacts must break its
+  ///        sliders loose before its sticking contacts slip (breaksAway()).
+  bool require_breakaway = true;
+  BalanceSettings balance;  ///< force margins
 };
 
 /// \brief A support's configuration and verdict.
@@ -88,6 +91,13 @@ class SupportGeometry {
   /// \brief Configuration and verdict; `slip` (may be empty) the planned slip direction of
   ///        each contact (contact_balance.h), from slipDirections().
   Support check(const JigPose& pose, const ContactSet& set, const VecC& slip = VecC());
+
+  /// \brief Whether a run of `set` can start from rest at configuration q with the planned
+  ///        slip `slip` (slipDirections()): true without a sticking or a sliding contact,
+  ///        else ContactBalancer::breakaway is balanced. A heavily loaded tip planned to
+  ///        slide beside a lightly loaded one planned to stick fails: the plant's tips stay
+  ///        stuck until the lighter one gives, and the pivot is lost.
+  bool breaksAway(const VecQ& q, const ContactSet& set, const VecC& slip);
 
   /// \brief T_i^T (q1 - q0) per finger: the slip each contact sees moving from q0 to q1.
   VecC slipDirections(const VecQ& q0, const VecQ& q1);

@@ -30,6 +30,13 @@
 /// start-tree state reaches the goal by a straight slide or by the pivot that puts the part
 /// on it (the anchor fixes the stroke and the base angle in closed form).
 ///
+/// **Breakaway.** Every run rests at its ends, so its sliders start out stuck: a run with
+/// sticking and sliding contacts is entered only where they break away first
+/// (SupportGeometry::breaksAway, with the first move's slip). The start tree checks its
+/// first move after a root or a switch; the goal tree, whose moves run backwards in time,
+/// checks a node before it switches away from it (the run then starts there, towards the
+/// node it came from).
+///
 /// Cells blocked with block() (a cell of the lattice with a contact set) are never entered,
 /// by a move, a root or the straight slides and pivots that join the trees, in this and
 /// later searches: the support planner blocks the stretches whose closed-loop runs failed.
@@ -54,6 +61,9 @@ struct SupportStep {
   PivotAnchor anchor;   ///< meaningful when set.pivot() >= 0
   VecQ q;               ///< configuration (state_layout.h)
   double margin = 0.0;  ///< balance margin of the step's support
+  /// \brief The part rests here before moving on: a root or a contact switch (the start
+  ///        tree's sense of time).
+  bool rest = false;
 };
 
 /// \brief Settings of SupportSearch (file comment).
@@ -123,6 +133,10 @@ class SupportSearch {
   /// \brief The anchor of a pivot set at `pose` (the tip where it touches); true without
   ///        a pivot.
   bool anchorFor(const JigPose& pose, const ContactSet& set, PivotAnchor& anchor);
+  /// \brief The support of `set` at `pose` reached from `from` (a move when the sets are
+  ///        equal, else a switch at rest); false when it is blocked or not valid, or when a
+  ///        move from rest in the start tree's sense of time (`backward_` false) does not
+  ///        break away.
   bool stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
               const PivotAnchor& anchor, SupportStep& out);
 
@@ -130,6 +144,7 @@ class SupportSearch {
   SupportSearchSettings settings_;
   SupportGeometry geometry_;
   std::unordered_set<CellKey, CellKeyHash> blocked_;
+  bool backward_ = false;  ///< stepTo is extending the goal tree (moves backwards in time)
 };
 
 }  // namespace rbsf::planner
