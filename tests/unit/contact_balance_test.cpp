@@ -130,8 +130,7 @@ TEST(ContactBalance, AtBreakawayTheSlidersPullTheStaticLimitAndTheStickersKeepTh
         if (i == pivot) {  // inside its cone by the margin (outside when it is negative)
           EXPECT_LE(std::abs(b.ft[i]), s.friction_use * mu_s * b.fn[i] - b.margin * W + 1e-9);
         } else {  // against the slip, at breakaway x mu_s f_n
-          EXPECT_NEAR(b.ft[i], -(slip[i] > 0.0 ? 1.0 : -1.0) * s.breakaway * mu_s * b.fn[i],
-                      1e-9);
+          EXPECT_NEAR(b.ft[i], -(slip[i] > 0.0 ? 1.0 : -1.0) * s.breakaway * mu_s * b.fn[i], 1e-9);
         }
       }
       // Without the sliders' pull it is the static balance of frictionless slides.

@@ -116,8 +116,8 @@ class ContactBalancer {
   ///        contact with a planned slip (`slip`, as in statics()) is still held by static
   ///        friction and must break away first, so its tangential force is at
   ///        `breakaway` mu_s f_n against its slip (however small) while the sticking
-  ///        contacts stay inside their cones. Balanced: the sliders break away before any sticking
-  ///        contact does.
+  ///        contacts stay inside their cones. Balanced: the sliders break away before any
+  ///        sticking contact does.
   ContactBalance breakaway(const VecQ& q, const ContactSet& set, ModelData& data,
                            const VecC& slip) const;
 
