@@ -84,8 +84,8 @@ bool ContactBalancer::determined(const ContactSet& set, const ModelData& data) c
 }
 
 ContactBalance ContactBalancer::solveWith(const VecQ& q, const VecQ& vdot, const ContactSet& set,
-                                          const ModelData& data, const VecC& slip,
-                                          double slide_friction, double min_slip) const {
+                                          const ModelData& data, const VecC& slip, double mu_slide,
+                                          double min_slip) const {
   const int m = model_.numFingers(), nq = model_.configDim(), nu = model_.controlDim();
   const Cell& cell = model_.cell();
   ContactBalance out;
@@ -101,7 +101,6 @@ ContactBalance ContactBalancer::solveWith(const VecQ& q, const VecQ& vdot, const
   Eigen::MatrixXd N(nq, nl);
   Eigen::VectorXi finger(nl), normal_col(nl);  // normal_col: a tangent's normal column
   int c = 0;
-  const double mu_slide = slide_friction;
   auto kinetic = [&](int i) {
     return !set.sticks(i) && mu_slide > 0.0 && std::abs(slip[i]) > min_slip;
   };

@@ -128,10 +128,10 @@ class ContactBalancer {
   const BalanceSettings& settings() const { return settings_; }
 
  private:
-  /// `slide_friction`: the coefficient on the sliding contacts whose |slip| exceeds
-  /// `min_slip` (mu_k in motion).
+  /// `mu_slide`: the friction coefficient of the sliding contacts whose |slip| exceeds
+  /// `min_slip` (mu_k in motion, breakaway x mu_s at a run's start).
   ContactBalance solveWith(const VecQ& q, const VecQ& vdot, const ContactSet& set,
-                           const ModelData& data, const VecC& slip, double slide_friction,
+                           const ModelData& data, const VecC& slip, double mu_slide,
                            double min_slip) const;
 
   const RbsfModel& model_;
