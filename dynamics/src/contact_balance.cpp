@@ -45,21 +45,22 @@ ContactBalance ContactBalancer::solve(const VecQ& q, const VecQ& v, const VecQ& 
 
 ContactBalance ContactBalancer::statics(const VecQ& q, const ContactSet& set, ModelData& data,
                                         const VecC& slip) const {
-  model_.updateContacts(q, data);
-  const VecQ zero = VecQ::Zero(q.size());
-  model_.bias(q, zero, data.bias);
-  const VecC s = slip.size() == model_.numFingers() ? slip : VecC::Zero(model_.numFingers());
-  return solveWith(q, zero, set, data, s, model_.cell().friction.mu_kinetic, settings_.slip_rate);
+  return atRest(q, set, data, slip, model_.cell().friction.mu_kinetic, settings_.slip_rate);
 }
 
 ContactBalance ContactBalancer::breakaway(const VecQ& q, const ContactSet& set, ModelData& data,
                                           const VecC& slip) const {
+  // Any slip at all must first break the contact loose: the smallest one counts.
+  return atRest(q, set, data, slip, settings_.breakaway * model_.cell().friction.mu_static, 1e-9);
+}
+
+ContactBalance ContactBalancer::atRest(const VecQ& q, const ContactSet& set, ModelData& data,
+                                       const VecC& slip, double mu_slide, double min_slip) const {
   model_.updateContacts(q, data);
   const VecQ zero = VecQ::Zero(q.size());
   model_.bias(q, zero, data.bias);
-  // Any slip at all must first break the contact loose: the smallest one counts.
-  return solveWith(q, zero, set, data, slip, settings_.breakaway * model_.cell().friction.mu_static,
-                   1e-9);
+  const VecC s = slip.size() == model_.numFingers() ? slip : VecC::Zero(model_.numFingers());
+  return solveWith(q, zero, set, data, s, mu_slide, min_slip);
 }
 
 bool ContactBalancer::determined(const ContactSet& set, const ModelData& data) const {

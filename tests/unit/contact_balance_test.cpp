@@ -142,6 +142,10 @@ TEST(ContactBalance, AtBreakawayTheSlidersPullTheStaticLimitAndTheStickersKeepTh
     }
   }
   EXPECT_GE(solved, 3);
+  // No planned slip (an empty vector): nothing has to break away.
+  const ContactSet pivot{kAll, 0b010u};
+  EXPECT_NEAR(balancer.breakaway(q, pivot, data, VecC()).margin,
+              balancer.statics(q, pivot, data).margin, 1e-12);
 }
 
 TEST(ContactBalance, HoldingAtRestAgreesWithHoldingTorques) {

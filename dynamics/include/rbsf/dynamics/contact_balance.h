@@ -128,6 +128,9 @@ class ContactBalancer {
   const BalanceSettings& settings() const { return settings_; }
 
  private:
+  /// statics() and breakaway(): v = 0, dv/dt = 0, an empty `slip` read as no slip.
+  ContactBalance atRest(const VecQ& q, const ContactSet& set, ModelData& data, const VecC& slip,
+                        double mu_slide, double min_slip) const;
   /// `mu_slide`: the friction coefficient of the sliding contacts whose |slip| exceeds
   /// `min_slip` (mu_k in motion, breakaway x mu_s at a run's start).
   ContactBalance solveWith(const VecQ& q, const VecQ& vdot, const ContactSet& set,
