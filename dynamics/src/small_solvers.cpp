@@ -54,11 +54,11 @@ constexpr double kPivotTol = 1e-9;   // smallest usable pivot in a row-normalise
 constexpr double kCostTol = 1e-9;    // reduced cost counted as negative (cost normalised)
 constexpr double kPhase1Tol = 1e-9;  // relative infeasibility accepted at the end of phase 1
 
-/// Dense simplex tableau: rows 0..m-1 are constraints, row m holds the reduced costs with
-/// -(objective value) in the last column. Column `cols()-1` is the right-hand side.
 // Row-major: a pivot is row operations, contiguous this way (2-3x faster than column-major).
 using TableauMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
+/// Dense simplex tableau: rows 0..m-1 are constraints, row m holds the reduced costs with
+/// -(objective value) in the last column. Column `cols()-1` is the right-hand side.
 class Tableau {
  public:
   Tableau(TableauMatrix t, std::vector<Index> basis) : t_(std::move(t)), basis_(std::move(basis)) {}
