@@ -68,14 +68,14 @@ bool SupportSearch::anchorFor(const JigPose& pose, const ContactSet& set, PivotA
 }
 
 bool SupportSearch::stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
-                           const PivotAnchor& anchor, SupportStep& out) {
+                           const PivotAnchor& anchor, SupportStep& out, bool backward) {
   if (!blocked_.empty() && blocked_.count(key(pose, set)) != 0) return false;
   const std::optional<VecQ> q = geometry_.configuration(pose, set);
   if (!q) return false;
   const VecC slip = set == from.set ? geometry_.slipDirections(from.q, *q) : VecC();
   const Support s = geometry_.check(pose, set, slip);
   if (!s.valid) return false;
-  if (set == from.set && from.rest && !backward_ && settings_.support.require_breakaway &&
+  if (set == from.set && from.rest && !backward && settings_.support.require_breakaway &&
       !geometry_.breaksAway(from.q, set, slip))
     return false;
   out.pose = pose;
@@ -433,11 +433,9 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     };
     auto tryMove = [&](const JigPose& pose, const ContactSet& set, const PivotAnchor& anchor) {
       SupportStep mid;
-      backward_ = t == 1;
-      const bool valid = !met && stepTo(s, lerp(s.pose, pose, 0.5), set, anchor, mid) &&
-                         stepTo(mid, pose, set, anchor, next);
-      backward_ = false;  // the joins that add() may try run forwards in time
-      if (valid) add(node.g + moveCost(s, next));
+      if (met || !stepTo(s, lerp(s.pose, pose, 0.5), set, anchor, mid, t == 1)) return;
+      if (!stepTo(mid, pose, set, anchor, next, t == 1)) return;
+      add(node.g + moveCost(s, next));
     };
     // In the goal tree a switch away from s starts (in time) the run from s towards the
     // node s came from: its sliders must break away there.

@@ -135,16 +135,15 @@ class SupportSearch {
   bool anchorFor(const JigPose& pose, const ContactSet& set, PivotAnchor& anchor);
   /// \brief The support of `set` at `pose` reached from `from` (a move when the sets are
   ///        equal, else a switch at rest); false when it is blocked or not valid, or when a
-  ///        move from rest in the start tree's sense of time (`backward_` false) does not
-  ///        break away.
+  ///        move from rest does not break away. `backward`: the move extends the goal tree,
+  ///        so it runs backwards in time and starts no run (the caller checks breakaway).
   bool stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
-              const PivotAnchor& anchor, SupportStep& out);
+              const PivotAnchor& anchor, SupportStep& out, bool backward = false);
 
   const RbsfModel& model_;
   SupportSearchSettings settings_;
   SupportGeometry geometry_;
   std::unordered_set<CellKey, CellKeyHash> blocked_;
-  bool backward_ = false;  ///< stepTo is extending the goal tree (moves backwards in time)
 };
 
 }  // namespace rbsf::planner
