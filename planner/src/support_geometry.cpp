@@ -98,7 +98,7 @@ Support SupportGeometry::check(const JigPose& pose, const ContactSet& set, const
 }
 
 bool SupportGeometry::breaksAway(const VecQ& q, const ContactSet& set, const VecC& slip) {
-  if (set.sticking == 0 || set.sticking == set.touching) return true;
+  if (set.sticking == set.touching) return true;
   return balancer_.breakaway(q, set, data_, slip).balanced;
 }
 

@@ -154,8 +154,8 @@ TEST(SupportTrajectory, ThePlanIsExactSlowJointFedBackAndEndsAtRestOnTheGoal) {
   EXPECT_LT(long_free.longest_free_start, 1.0);
 }
 
-/// Whether every run of `path` with sticking and sliding contacts breaks away at its first
-/// step, with the slip of its first move.
+/// Whether every run of `path` with sliding contacts breaks away at its first step, with the
+/// slip of its first move.
 bool everyRunBreaksAway(SupportGeometry& geometry, const SupportPath& path) {
   for (std::size_t i = 0; i + 1 < path.steps.size(); ++i) {
     const SupportStep& a = path.steps[i];
@@ -168,22 +168,43 @@ bool everyRunBreaksAway(SupportGeometry& geometry, const SupportPath& path) {
   return true;
 }
 
-TEST(SupportSearch, EveryRunWithStickingAndSlidingContactsBreaksAwayWhereItStarts) {
+TEST(SupportSearch, EveryRunWithSlidingContactsBreaksAwayWhereItStarts) {
   const RbsfModel& model = defaultModel();
-  for (const Pose& goal : {kTurn15, Pose{0.1, 0.40, -30.0 * M_PI / 180}}) {
-    SupportSearch search(model, searchSettings());
+  SupportSearchSettings wide = searchSettings();
+  wide.support.balance.friction_use = 0.6;
+  const Pose turn45{0.1, 0.40, -45.0 * M_PI / 180};
+  for (const Pose& goal : {kTurn15, Pose{0.1, 0.40, -30.0 * M_PI / 180}, turn45}) {
+    SupportSearch search(model, goal.phi == turn45.phi ? wide : searchSettings());
     const SupportPath path = search.search(kStart, 0.0, goal);
     ASSERT_TRUE(path.found);
     EXPECT_TRUE(everyRunBreaksAway(search.geometry(), path)) << goal.phi;
   }
   // Not a vacuous check: without it, the 60 degree turn's path pivots about a lightly loaded
-  // tip beside a heavily loaded slider that cannot break loose first.
-  SupportSearchSettings settings = searchSettings();
-  settings.support.require_breakaway = false;
-  SupportSearch search(model, settings);
-  const SupportPath path = search.search(kStart, 0.0, Pose{0.1, 0.40, -60.0 * M_PI / 180});
+  // tip beside a heavily loaded slider that cannot break loose first, and the 45 degree
+  // turn's path has a run on three sliding tips that cannot all break loose at once.
+  auto ruleless = [](SupportSearchSettings settings) {
+    settings.support.require_breakaway = false;
+    return settings;
+  };
+  {
+    SupportSearch search(model, ruleless(searchSettings()));
+    const SupportPath path = search.search(kStart, 0.0, Pose{0.1, 0.40, -60.0 * M_PI / 180});
+    ASSERT_TRUE(path.found);
+    EXPECT_FALSE(everyRunBreaksAway(search.geometry(), path));
+  }
+  SupportSearch search(model, ruleless(wide));
+  const SupportPath path = search.search(kStart, 0.0, turn45);
   ASSERT_TRUE(path.found);
-  EXPECT_FALSE(everyRunBreaksAway(search.geometry(), path));
+  bool stuck_slide = false;  // a run on sliding tips alone that cannot start
+  for (std::size_t i = 0; i + 1 < path.steps.size(); ++i) {
+    const SupportStep& a = path.steps[i];
+    const bool starts = i == 0 || path.steps[i - 1].set != a.set;
+    if (starts && a.set.sticking == 0 && a.set == path.steps[i + 1].set)
+      stuck_slide = stuck_slide ||
+                    !search.geometry().breaksAway(
+                        a.q, a.set, search.geometry().slipDirections(a.q, path.steps[i + 1].q));
+  }
+  EXPECT_TRUE(stuck_slide);
 }
 
 TEST(SupportSearch, ABlockedCellIsAvoidedByTheNextSearch) {

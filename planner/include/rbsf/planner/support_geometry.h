@@ -54,8 +54,8 @@ struct SupportSettings {
   double min_normal_cosine = 0.35;   ///< sliding contacts' normals against the finger axis
   double min_sticking_cosine = 0.1;  ///< sticking contacts' (friction carries the rest)
   bool require_determined = true;    ///< the joints alone must fix the part
-  /// \brief A run that starts from rest with sticking and sliding contacts must break its
-  ///        sliders loose before its sticking contacts slip (breaksAway()).
+  /// \brief A run that starts from rest with sliding contacts must break its sliders loose
+  ///        before any sticking contact slips (breaksAway()).
   bool require_breakaway = true;
   BalanceSettings balance;  ///< force margins
 };
@@ -93,10 +93,13 @@ class SupportGeometry {
   Support check(const JigPose& pose, const ContactSet& set, const VecC& slip = VecC());
 
   /// \brief Whether a run of `set` can start from rest at configuration q with the planned
-  ///        slip `slip` (slipDirections()): true without a sticking or a sliding contact,
-  ///        else ContactBalancer::breakaway is balanced. A heavily loaded tip planned to
-  ///        slide beside a lightly loaded one planned to stick fails: the plant's tips stay
-  ///        stuck until the lighter one gives, and the pivot is lost.
+  ///        slip `slip` (slipDirections()): true without a sliding contact, else
+  ///        ContactBalancer::breakaway is balanced. At rest every tip sticks, so the sliders
+  ///        must all reach mu_s f_n against their slip while the part stays in balance. A
+  ///        heavily loaded tip planned to slide beside a lightly loaded one planned to stick
+  ///        fails: the plant's tips stay stuck until the lighter one gives, and the pivot is
+  ///        lost. So does a run on sliding tips alone whose tips cannot all break loose at
+  ///        once: the lighter ones give first and the heaviest stays stuck.
   bool breaksAway(const VecQ& q, const ContactSet& set, const VecC& slip);
 
   /// \brief T_i^T (q1 - q0) per finger: the slip each contact sees moving from q0 to q1.

@@ -31,7 +31,7 @@
 /// on it (the anchor fixes the stroke and the base angle in closed form).
 ///
 /// **Breakaway.** Every run rests at its ends, so its sliders start out stuck: a run with
-/// sticking and sliding contacts is entered only where they break away first
+/// sliding contacts is entered only where they break away first
 /// (SupportGeometry::breaksAway, with the first move's slip). The start tree checks its
 /// first move after a root or a switch; the goal tree, whose moves run backwards in time,
 /// checks a node before it switches away from it (the run then starts there, towards the
