@@ -454,6 +454,26 @@ TEST(PlanReorientation, SupportPlannerWritesASlowJointFedBackPlanAndItsVerdict) 
   EXPECT_LT(std::abs(last[2].get<double>()), 1e-3);
 }
 
+TEST(PlanReorientation, TheSupportSearchTakesItsFrictionUseAndLatticeFromTheOptions) {
+  // At 0.45 of the cone (the first default) the 15 degree turn's path is found; asked for
+  // 0.6 alone, on a finer lattice, the path found keeps within 0.6 and the search expands
+  // another number of nodes.
+  auto search = [](const std::string& options) {
+    const Result r = run(kPlan + " --cell " + kCells +
+                         "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --planner "
+                         "support --quiet --trials 2 " +
+                         options + " --out " + writeTemp("support_options.json", ""));
+    EXPECT_TRUE(r.status == 0 || r.status == 4) << r.status << "\n" << r.err;
+    const std::size_t at = r.out.find("support path: sticking forces within ");
+    return at == std::string::npos ? std::string() : r.out.substr(at, r.out.find('\n', at) - at);
+  };
+  const std::string standard = search("");
+  const std::string asked = search("--friction-use 0.6 --support-lattice 2.5deg,0.01");
+  EXPECT_NE(standard.find("within 0.45 of"), std::string::npos) << standard;
+  EXPECT_NE(asked.find("within 0.60 of"), std::string::npos) << asked;
+  EXPECT_NE(asked.substr(asked.find(',')), standard.substr(standard.find(','))) << asked;
+}
+
 TEST(PlanReorientation, OptimisesByDefaultAndWritesTheBetterCertifiedPlan) {
   const std::string out = writeTemp("opt_plan.json", "");
   const Result r = run(kPlan + " --cell " + kCells +
@@ -603,6 +623,13 @@ TEST(PlanReorientation, BadInputIsRefusedWithExitTwo) {
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --trials 0", "--trials"},
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --trials 2.5", "--trials"},
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --trial-seed 0", "--trial-seed"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --friction-use 0", "--friction-use"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --friction-use 0.45,1.5", "--friction-use"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --friction-use 0.45,", "--friction-use"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --support-lattice 2.5deg", "--support-lattice"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --support-lattice 0.1deg,0.01",
+       "--support-lattice"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --support-lattice 5deg,-0.02", "--support-lattice"},
   };
   for (const Case& c : cases) {
     const std::string out = writeTemp("never.json", "");

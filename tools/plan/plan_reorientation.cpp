@@ -20,6 +20,8 @@
 #include <cstdio>
 #include <iostream>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "plan_outputs.h"
 #include "rbsf/dynamics/errors.h"
@@ -41,9 +43,53 @@ struct Options {
       start_theta = "0", planner = "auto", attempts = "0", time_limit = "30", seed = "1", out, csv,
       svg, report, svg_still = "0", knots = "100", optimize_time_limit = "30",
       optimize_iterations = "500", optimize_tolerance = "1e-6", goal_angle = "nearest",
-      trials = "32", trial_seed = "1";
+      trials = "32", trial_seed = "1", friction_use = "0.45,0.6", support_lattice = "5deg,0.02";
   bool quiet = false, no_optimize = false, reproducible = false, no_decisive_modes = false;
 };
+
+/// The comma-separated fields of `text` (one empty field for an empty text).
+std::vector<std::string_view> fields(std::string_view text) {
+  std::vector<std::string_view> out;
+  for (std::size_t from = 0;;) {
+    const std::size_t comma = text.find(',', from);
+    out.push_back(text.substr(from, comma == std::string_view::npos ? comma : comma - from));
+    if (comma == std::string_view::npos) return out;
+    from = comma + 1;
+  }
+}
+
+/// --friction-use and --support-lattice into the support planner's settings. The lattice's
+/// expansion cap grows with the number of its cells (angle^2 x position) from the default's.
+void parseSupportOptions(const std::string& friction_use, const std::string& lattice,
+                         planner::SupportPlannerSettings& support) {
+  support.friction_uses.clear();
+  for (std::string_view f : fields(friction_use)) {
+    const double use = parseNumber(f, "--friction-use");
+    if (!(use > 0.0 && use <= 1.0))
+      throw InputError("--friction-use: each share of the friction cone must be in (0, 1] (got " +
+                       std::string(f) + ")");
+    support.friction_uses.push_back(use);
+  }
+  const std::vector<std::string_view> steps = fields(lattice);
+  if (steps.size() != 2)
+    throw InputError("--support-lattice: expected angle,position (e.g. 2.5deg,0.01), got " +
+                     lattice);
+  const double angle = parseAngle(steps[0], "--support-lattice");
+  const double position = parseNumber(steps[1], "--support-lattice");
+  if (!(angle >= 0.5 * M_PI / 180 && angle <= 45.0 * M_PI / 180))
+    throw InputError("--support-lattice: the angle step must be in 0.5deg..45deg (got " +
+                     std::string(steps[0]) + ")");
+  if (!(position >= 0.001 && position <= 0.2))
+    throw InputError("--support-lattice: the position step must be in 0.001..0.2 m (got " +
+                     std::string(steps[1]) + ")");
+  planner::SupportSearchSettings& search = support.search;
+  const double cells = std::pow(search.angle_step / angle, 2) * (search.xy_step / position);
+  search.max_expansions =
+      static_cast<long>(std::min(1e9, std::max(1.0, cells) * search.max_expansions));
+  search.angle_step = angle;
+  search.xy_step = position;
+  search.goal_theta_step = std::min(search.goal_theta_step, angle);
+}
 
 /// The optimiser's line: which solve, how it went, and whether its plan was chosen.
 void printOptimisation(const trajopt::RefineOutcome& r) {
@@ -142,6 +188,12 @@ int run(int argc, char** argv) {
                  "closed-loop trials of the certificate, 1..100000 (default 32)");
   app.add_option("--trial-seed", o.trial_seed,
                  "seed of the certificate's draws, positive integer (default 1)");
+  app.add_option("--friction-use", o.friction_use,
+                 "support planner: the sticking forces' share of the friction cone, one search "
+                 "per value in order, each in (0, 1] (default 0.45,0.6)");
+  app.add_option("--support-lattice", o.support_lattice,
+                 "support planner: the search's angle and position steps (default 5deg,0.02; "
+                 "finer lattices find more paths and take longer)");
   parseCommandLine(app, argc, argv);
   const PlanOutputs outputs({o.out, o.csv, o.svg, o.report, o.reproducible,
                              parseNumber(o.svg_still, "--svg-still"), o.cell});
@@ -178,6 +230,7 @@ int run(int argc, char** argv) {
   certificate.trials = static_cast<int>(parseInteger(o.trials, "--trials", 1, 100000));
   certificate.seed =
       static_cast<std::uint64_t>(parseInteger(o.trial_seed, "--trial-seed", 1, 1LL << 53));
+  parseSupportOptions(o.friction_use, o.support_lattice, pipeline.support);
   planner::Problem problem;
   problem.start = parsePose(o.start, "--start");
   problem.goal = parsePose(o.goal, "--goal");
