@@ -572,6 +572,23 @@ TEST(PlanReorientation, TimeLimitWithoutExactPlanExitsThree) {
   EXPECT_EQ(r.out.find("tolerance units"), std::string::npos) << r.out;
 }
 
+TEST(PlanReorientation, ASearchThatRunsOutOfNodesSaysSoNotTimeLimit) {
+  // The support search has no +15 degree path on its lattice and says so within seconds:
+  // exit 3, nothing written, and not blamed on the 120 s it did not use.
+  const std::string out = writeTemp("searched_out.json", "");
+  std::remove(out.c_str());
+  const Result r = run(kPlan + " --cell " + kCells +
+                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,15deg --planner support"
+                       " --time-limit 120 --quiet --out " +
+                       out);
+  ASSERT_EQ(r.status, 3) << r.out << r.err;
+  EXPECT_NE(r.out.find("searched out"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("no plan: every search ended without a path, after "), std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("no plan within"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::ifstream(out).good()) << "wrote a plan";
+}
+
 TEST(PlanReorientation, AbsoluteGoalAngleIsATotalTurn) {
   // 345 deg is 15 deg short of a full turn: "nearest" reads it as -15 deg and finds it
   // within a second; "absolute" asks for 345 deg counter-clockwise, which a one-second

@@ -8,10 +8,10 @@
 //
 // Exit status: 0 a certified plan written; 4 an exact plan written but not certified
 // (verdict and worst trial on stderr); 3 time limit without an exact plan (where the
-// closest plan ends, in metres and degrees; the approximate plan, certified, written); 2 bad
-// input (option, value, file, a start the fingers cannot hold, a goal no finger reaches);
-// 130 stopped by SIGINT, 143 by SIGTERM (best plan so far written, not certified); 1
-// internal error.
+// closest plan ends, in metres and degrees; the approximate plan, certified, written), or
+// every search ended without a path (nothing written); 2 bad input (option, value, file, a
+// start the fingers cannot hold, a goal no finger reaches); 130 stopped by SIGINT, 143 by
+// SIGTERM (best plan so far written, not certified); 1 internal error.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -136,7 +136,8 @@ int run(int argc, char** argv) {
       "is written, else the best one found, marked not certified.\n"
       "Exit status: 0 a certified plan written; 4 an exact plan written but not certified "
       "(verdict on stderr); 3 time limit without an exact plan (where the closest plan ends, "
-      "in metres and degrees; the approximate plan written); 2 bad input (option, value, "
+      "in metres and degrees; the approximate plan written), or every search ended without a "
+      "path (nothing written); 2 bad input (option, value, "
       "file, a start the fingers cannot hold, a goal no finger reaches), with one message on "
       "stderr; 130 stopped by SIGINT, 143 by SIGTERM (Ctrl-C or kill, during the search or "
       "the optimisation: the best plan so far is written, not certified; a second signal "
@@ -336,7 +337,12 @@ int run(int argc, char** argv) {
                    plan::verdictText(plan.certificate).c_str());
       return kExitNotCertified;
     case planner::PipelineStatus::kNoPlan:
-      std::printf("no plan within %.3g s\n", settings.time_limit);
+      // A search that ran out of nodes is an answer, not a time limit: say which it was.
+      if (result.wall_time < 0.99 * settings.time_limit)
+        std::printf("no plan: every search ended without a path, after %.3g s of %.3g\n",
+                    result.wall_time, settings.time_limit);
+      else
+        std::printf("no plan within %.3g s\n", settings.time_limit);
       return kExitTimeLimit;
     case planner::PipelineStatus::kApproximate:
       break;
