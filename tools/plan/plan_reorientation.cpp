@@ -43,7 +43,7 @@ struct Options {
       start_theta = "0", planner = "auto", attempts = "0", time_limit = "30", seed = "1", out, csv,
       svg, report, svg_still = "0", knots = "100", optimize_time_limit = "30",
       optimize_iterations = "500", optimize_tolerance = "1e-6", goal_angle = "nearest",
-      trials = "32", trial_seed = "1", friction_use = "0.45,0.6", support_lattice = "5deg,0.02";
+      trials = "32", trial_seed = "1", friction_use, support_lattice;
   bool quiet = false, no_optimize = false, reproducible = false, no_decisive_modes = false;
 };
 
@@ -58,18 +58,32 @@ std::vector<std::string_view> fields(std::string_view text) {
   }
 }
 
-/// --friction-use and --support-lattice into the support planner's settings. The lattice's
-/// expansion cap grows with the number of its cells (angle^2 x position) from the default's.
+/// The support planner's defaults as the options write them: "0.45,0.6" and "5deg,0.02".
+std::string defaultFrictionUses() {
+  std::string out;
+  for (double use : planner::SupportPlannerSettings{}.friction_uses)
+    out += (out.empty() ? "" : ",") + numberText(use);
+  return out;
+}
+std::string defaultLattice() {
+  const planner::SupportSearchSettings s = planner::SupportPlannerSettings::defaultSearch();
+  return numberText(s.angle_step * 180.0 / M_PI) + "deg," + numberText(s.xy_step);
+}
+
+/// --friction-use and --support-lattice, when given, into the support planner's settings.
+/// The lattice's expansion cap grows with the number of its cells (angle^2 x position).
 void parseSupportOptions(const std::string& friction_use, const std::string& lattice,
                          planner::SupportPlannerSettings& support) {
-  support.friction_uses.clear();
-  for (std::string_view f : fields(friction_use)) {
+  if (!friction_use.empty()) support.friction_uses.clear();
+  for (std::string_view f :
+       friction_use.empty() ? std::vector<std::string_view>{} : fields(friction_use)) {
     const double use = parseNumber(f, "--friction-use");
     if (!(use > 0.0 && use <= 1.0))
       throw InputError("--friction-use: each share of the friction cone must be in (0, 1] (got " +
                        std::string(f) + ")");
     support.friction_uses.push_back(use);
   }
+  if (lattice.empty()) return;
   const std::vector<std::string_view> steps = fields(lattice);
   if (steps.size() != 2)
     throw InputError("--support-lattice: expected angle,position (e.g. 2.5deg,0.01), got " +
@@ -191,10 +205,11 @@ int run(int argc, char** argv) {
                  "seed of the certificate's draws, positive integer (default 1)");
   app.add_option("--friction-use", o.friction_use,
                  "support planner: the sticking forces' share of the friction cone, one search "
-                 "per value in order, each in (0, 1] (default 0.45,0.6)");
+                 "per value in order, each in (0, 1] (default " +
+                     defaultFrictionUses() + ")");
   app.add_option("--support-lattice", o.support_lattice,
-                 "support planner: the search's angle and position steps (default 5deg,0.02; "
-                 "finer lattices find more paths and take longer)");
+                 "support planner: the search's angle and position steps (default " +
+                     defaultLattice() + "; finer lattices find more paths and take longer)");
   parseCommandLine(app, argc, argv);
   const PlanOutputs outputs({o.out, o.csv, o.svg, o.report, o.reproducible,
                              parseNumber(o.svg_still, "--svg-still"), o.cell});
