@@ -125,8 +125,9 @@ TEST_P(PhaseTargetsTest, SlideTauMakesTheLcpDoTheTargetedSlide) {
         // Three contacts on a part whose normals do not meet in one point: the forces are
         // unique, so they are the drawn ones. (Four contacts, or a circle's normals through
         // its centre: NNLS picks one of many solutions, some forces zero.)
-        if (m == 3 && GetParam() != ShapeKind::kCircle)
+        if (m == 3 && GetParam() != ShapeKind::kCircle) {
           EXPECT_NEAR(e.fn[i], drawn[i], 1e-6 * drawn.norm()) << "contact " << i;
+        }
       }
     }
     EXPECT_GE(checked, 15) << "m = " << m;
