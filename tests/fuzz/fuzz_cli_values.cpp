@@ -31,8 +31,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       case 1:
         requireFinite(parseAngle(text, "--x"));
         break;
-      case 2:
-        for (const double x : parseVector(text, "--x", static_cast<std::size_t>(n % 16)))
+      case 2:  // a size of 0: a list of any length; else exactly that many
+        try {  // the same text split unparsed: entries are never empty nor hold a comma
+          for (const std::string_view f : parseFields(text, "--x", 1 + n % 4))
+            if (f.empty() || f.find(',') != std::string_view::npos) std::abort();
+        } catch (const rbsf::InputError&) {
+        }
+        for (const double x : n % 16 == 0
+                                  ? parseList(text, "--x")
+                                  : parseVector(text, "--x", static_cast<std::size_t>(n % 16)))
           requireFinite(x);
         break;
       case 3: {

@@ -105,6 +105,24 @@ TEST(CliVector, RejectsEmptyEntriesAndBadNumbers) {
   EXPECT_EQ(errorOf([] { parseVector("1;2;3", "--f", 3); }), "--f: expected 3 numbers, got 1");
 }
 
+TEST(CliList, TakesOneOrMoreNumbersWithTheVectorsRules) {
+  EXPECT_EQ(parseList("0.45", "--u"), (std::vector<double>{0.45}));
+  EXPECT_EQ(parseList(" 0.45 , 0.6,1e-1 ", "--u"), (std::vector<double>{0.45, 0.6, 0.1}));
+  EXPECT_EQ(errorOf([] { parseList("", "--u"); }),
+            "--u: empty value (expected one or more numbers)");
+  EXPECT_EQ(errorOf([] { parseList("0.45,", "--u"); }), "--u: entry 2 is empty (stray comma?)");
+  EXPECT_EQ(errorOf([] { parseList("0.45,x", "--u"); }), "--u entry 2: 'x' is not a number");
+}
+
+TEST(CliFields, SplitsWithoutParsingAndCountsLikeAVector) {
+  EXPECT_EQ(parseFields(" 2.5deg , 0.01", "--l", 2),
+            (std::vector<std::string_view>{"2.5deg", "0.01"}));
+  EXPECT_EQ(errorOf([] { parseFields("2.5deg", "--l", 2, "angle,position"); }),
+            "--l: expected 2 numbers (angle,position), got 1");
+  EXPECT_EQ(errorOf([] { parseFields("2.5deg,,1", "--l", 3); }),
+            "--l: entry 2 is empty (stray comma?)");
+}
+
 TEST(CliPose, PhiAcceptsDegrees) {
   const Pose p = parsePose("0.1, -0.2, 30deg", "--pose");
   EXPECT_DOUBLE_EQ(p.x, 0.1);

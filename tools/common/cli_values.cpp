@@ -76,10 +76,14 @@ double angle(std::string_view text, std::string_view what) {
   return v * scale;
 }
 
-/// Splits "a, b, c" into exactly `expected` trimmed, non-empty entries.
+/// Splits "a, b, c" into exactly `expected` trimmed, non-empty entries (any number of them
+/// for kAnyCount).
+constexpr std::size_t kAnyCount = 0;
 std::vector<std::string_view> split(std::string_view text, std::string_view what,
                                     std::size_t expected, std::string_view layout) {
-  const std::string want = std::to_string(expected) + (expected == 1 ? " number" : " numbers") +
+  const std::string want = (expected == kAnyCount ? "one or more numbers"
+                                                  : std::to_string(expected) +
+                                                        (expected == 1 ? " number" : " numbers")) +
                            (layout.empty() ? "" : " (" + std::string(layout) + ")");
   if (trim(text).empty()) fail(what, "empty value (expected " + want + ")");
   std::vector<std::string_view> out;
@@ -92,7 +96,7 @@ std::vector<std::string_view> split(std::string_view text, std::string_view what
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
-  if (out.size() != expected)
+  if (expected != kAnyCount && out.size() != expected)
     fail(what, "expected " + want + ", got " + std::to_string(out.size()));
   return out;
 }
@@ -100,6 +104,15 @@ std::vector<std::string_view> split(std::string_view text, std::string_view what
 std::string entryWhat(std::string_view what, std::size_t i, std::string_view name = {}) {
   return std::string(what) + " entry " + std::to_string(i + 1) +
          (name.empty() ? "" : " (" + std::string(name) + ")");
+}
+
+/// Each entry as a number, named by its place in `what`.
+std::vector<double> numbers(const std::vector<std::string_view>& tokens, std::string_view what) {
+  std::vector<double> out;
+  out.reserve(tokens.size());
+  for (std::size_t i = 0; i < tokens.size(); ++i)
+    out.push_back(number(tokens[i], entryWhat(what, i)));
+  return out;
 }
 
 /// Name of configuration (or velocity) entry i, e.g. "phi", "l2", "dtheta".
@@ -159,12 +172,16 @@ double parseAngle(std::string_view text, std::string_view what) { return angle(t
 
 std::vector<double> parseVector(std::string_view text, std::string_view what,
                                 std::size_t expected_size, std::string_view layout) {
-  const auto tokens = split(text, what, expected_size, layout);
-  std::vector<double> out;
-  out.reserve(tokens.size());
-  for (std::size_t i = 0; i < tokens.size(); ++i)
-    out.push_back(number(tokens[i], entryWhat(what, i)));
-  return out;
+  return numbers(split(text, what, expected_size, layout), what);
+}
+
+std::vector<double> parseList(std::string_view text, std::string_view what) {
+  return numbers(split(text, what, kAnyCount, {}), what);
+}
+
+std::vector<std::string_view> parseFields(std::string_view text, std::string_view what,
+                                          std::size_t expected_size, std::string_view layout) {
+  return split(text, what, expected_size, layout);
 }
 
 rbsf::Pose parsePose(std::string_view text, std::string_view what) {

@@ -47,17 +47,6 @@ struct Options {
   bool quiet = false, no_optimize = false, reproducible = false, no_decisive_modes = false;
 };
 
-/// The comma-separated fields of `text` (one empty field for an empty text).
-std::vector<std::string_view> fields(std::string_view text) {
-  std::vector<std::string_view> out;
-  for (std::size_t from = 0;;) {
-    const std::size_t comma = text.find(',', from);
-    out.push_back(text.substr(from, comma == std::string_view::npos ? comma : comma - from));
-    if (comma == std::string_view::npos) return out;
-    from = comma + 1;
-  }
-}
-
 /// The support planner's defaults as the options write them: "0.45,0.6" and "5deg,0.02".
 std::string defaultFrictionUses() {
   std::string out;
@@ -74,22 +63,18 @@ std::string defaultLattice() {
 /// The lattice's expansion cap grows with the number of its cells (angle^2 x position).
 void parseSupportOptions(const std::string& friction_use, const std::string& lattice,
                          planner::SupportPlannerSettings& support) {
-  if (!friction_use.empty()) support.friction_uses.clear();
-  for (std::string_view f :
-       friction_use.empty() ? std::vector<std::string_view>{} : fields(friction_use)) {
-    const double use = parseNumber(f, "--friction-use");
-    if (!(use > 0.0 && use <= 1.0))
-      throw InputError("--friction-use: each share of the friction cone must be in (0, 1] (got " +
-                       std::string(f) + ")");
-    support.friction_uses.push_back(use);
+  if (!friction_use.empty()) {
+    support.friction_uses = parseList(friction_use, "--friction-use");
+    for (double use : support.friction_uses)
+      if (!(use > 0.0 && use <= 1.0))
+        throw InputError("--friction-use: each share of the friction cone must be in (0, 1] (got " +
+                         numberText(use) + ")");
   }
   if (lattice.empty()) return;
-  const std::vector<std::string_view> steps = fields(lattice);
-  if (steps.size() != 2)
-    throw InputError("--support-lattice: expected angle,position (e.g. 2.5deg,0.01), got " +
-                     lattice);
-  const double angle = parseAngle(steps[0], "--support-lattice");
-  const double position = parseNumber(steps[1], "--support-lattice");
+  const std::vector<std::string_view> steps =
+      parseFields(lattice, "--support-lattice", 2, "angle,position");
+  const double angle = parseAngle(steps[0], "--support-lattice entry 1 (angle)");
+  const double position = parseNumber(steps[1], "--support-lattice entry 2 (position)");
   if (!(angle >= 0.5 * M_PI / 180 && angle <= 45.0 * M_PI / 180))
     throw InputError("--support-lattice: the angle step must be in 0.5deg..45deg (got " +
                      std::string(steps[0]) + ")");

@@ -43,6 +43,15 @@ double parseAngle(std::string_view text, std::string_view what);
 std::vector<double> parseVector(std::string_view text, std::string_view what,
                                 std::size_t expected_size, std::string_view layout = {});
 
+/// \brief One or more comma-separated numbers.
+std::vector<double> parseList(std::string_view text, std::string_view what);
+
+/// \brief Exactly `expected_size` comma-separated, trimmed, non-empty entries, unparsed: for
+///        values whose entries are of different kinds (an angle and a length). `layout` is
+///        quoted in the length error as in parseVector().
+std::vector<std::string_view> parseFields(std::string_view text, std::string_view what,
+                                          std::size_t expected_size, std::string_view layout = {});
+
 /// \brief "x,y,phi" with phi an angle (deg suffix allowed).
 rbsf::Pose parsePose(std::string_view text, std::string_view what);
 
