@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
+#include <random>
 #include <vector>
 
 #include "../unit/test_support.h"
@@ -11,6 +13,7 @@
 #include "rbsf/dynamics/forward_dynamics.h"
 #include "rbsf/dynamics/holding.h"
 #include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/small_qp.h"
 #include "rbsf/dynamics/small_solvers.h"
 
 namespace rbsf {
@@ -45,6 +48,46 @@ TEST_F(NoAllocation, LcpSolve) {
   for (size_t i = 0; i < As.size(); ++i) pivots += solveLcp(As[i], ps[i], z, w).pivots;
   EXPECT_EQ(counter.count(), 0);
   EXPECT_GT(pivots, 0);
+}
+
+TEST_F(NoAllocation, SmallQpSolve) {
+  // Problems of every size class up to capacity, feasible (rows added and dropped) and
+  // infeasible, equality rows included; constructed before counting.
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<SmallQp> problems;
+  const std::array<std::array<int, 3>, 7> sizes = {
+      {{1, 0, 2}, {6, 0, 20}, {6, 1, 20}, {9, 0, 15}, {12, 3, 48}, {16, 4, 96}, {16, 16, 96}}};
+  for (const auto& [n, me, mi] : sizes) {
+    for (const bool feasible : {true, false}) {
+      SmallQp& qp = problems.emplace_back(n, me, mi);
+      Eigen::MatrixXd B = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return u(rng); });
+      qp.H = B * B.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n);
+      QpVecN x_f = QpVecN::NullaryExpr(n, [&] { return u(rng); });
+      qp.g = 5.0 * QpVecN::NullaryExpr(n, [&] { return u(rng); });
+      qp.A_eq = QpMatEN::NullaryExpr(me, n, [&] { return u(rng); });
+      qp.b_eq = qp.A_eq * x_f;
+      qp.A = QpMatIN::NullaryExpr(mi, n, [&] { return u(rng); });
+      qp.b = qp.A * x_f - QpVecI::NullaryExpr(mi, [&] { return 0.5 + 0.5 * u(rng); });
+      if (!feasible) {  // a^T x >= 1 and a^T x <= 0
+        qp.A.row(mi - 1) = -qp.A.row(0);
+        qp.b[0] = 1.0;
+        qp.b[mi - 1] = 0.0;
+      }
+    }
+  }
+  int steps = 0, optimal = 0, infeasible = 0;
+  test::MallocCounter counter;
+  for (SmallQp& qp : problems) {
+    const QpStatus status = qp.solve();
+    steps += qp.iterations;
+    optimal += status == QpStatus::kOptimal;
+    infeasible += status == QpStatus::kInfeasible;
+  }
+  EXPECT_EQ(counter.count(), 0);
+  EXPECT_EQ(optimal, 7);
+  EXPECT_EQ(infeasible, 7);
+  EXPECT_GT(steps, 50);
 }
 
 TEST_F(NoAllocation, ForwardDynamicsEvaluation) {
