@@ -13,12 +13,30 @@ std::atomic<long> g_mallocs{0};
 }  // namespace
 
 #ifdef RBSF_COUNT_MALLOC
-extern "C" void* __libc_malloc(std::size_t size);
-extern "C" void* malloc(std::size_t size) noexcept {
+namespace {
+void countOne() {
   if (g_counting.load(std::memory_order_relaxed) > 0) {
     g_mallocs.fetch_add(1, std::memory_order_relaxed);
   }
+}
+}  // namespace
+
+extern "C" void* __libc_malloc(std::size_t size);
+extern "C" void* malloc(std::size_t size) noexcept {
+  countOne();
   return __libc_malloc(size);
+}
+// GCC turns a malloc followed by a zeroing memset (Eigen's setZero() on a fresh dynamic
+// matrix) into calloc; a resize may reach realloc.
+extern "C" void* __libc_calloc(std::size_t count, std::size_t size);
+extern "C" void* calloc(std::size_t count, std::size_t size) noexcept {
+  countOne();
+  return __libc_calloc(count, size);
+}
+extern "C" void* __libc_realloc(void* pointer, std::size_t size);
+extern "C" void* realloc(void* pointer, std::size_t size) noexcept {
+  countOne();
+  return __libc_realloc(pointer, size);
 }
 #endif
 

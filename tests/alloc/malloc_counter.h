@@ -1,6 +1,7 @@
 #pragma once
 // Counts heap allocations in this test binary. Eigen allocates through malloc, not
-// operator new, so malloc itself is interposed (glibc lets the executable do that).
+// operator new, so malloc itself is interposed (glibc lets the executable do that), and with
+// it calloc and realloc.
 // Sanitizers interpose malloc themselves: there counting is unavailable and the tests skip.
 
 namespace rbsf::test {

@@ -33,6 +33,14 @@ TEST_F(NoAllocation, CounterSeesMalloc) {
   EXPECT_EQ(counter.count(), 1);
 }
 
+TEST_F(NoAllocation, CounterSeesCallocAndRealloc) {
+  test::MallocCounter counter;
+  void* volatile zeroed = std::calloc(8, 8);
+  void* volatile grown = std::realloc(zeroed, 4096);
+  std::free(grown);
+  EXPECT_EQ(counter.count(), 2);
+}
+
 TEST_F(NoAllocation, LcpSolve) {
   std::mt19937 rng(5);
   std::vector<MatCC> As;
