@@ -27,7 +27,7 @@
 /// (a single look: at most 5 %), at 0.94 4.1 %, at 0.90 0.13 % (the former rule, 95 % of
 /// 32 trials, certified a 90 % plan 16 % of the time); a plan at 0.99 is certified with
 /// probability 0.999996 after 105 trials on average, one at 0.999 after 68. A fixed count
-/// has the nominal error rate.
+/// errs at most at the nominal rate, 1 - confidence.
 ///
 /// The law is the one the cell's sensing allows: part feedback (TV-LQR with the part's
 /// pose) when the cell senses the part, joint feedback (joint PD) when it does not, or
