@@ -69,10 +69,6 @@ FeedbackSchedule makeSchedule(const RbsfModel& model, const Plan& plan,
                           plan.simulator, s.feedback);
 }
 
-}  // namespace
-
-namespace {
-
 /// The plan fails the checks that do not depend on the trials.
 bool planFails(const Certificate& c) {
   return !c.motion.ok() || (c.holding_required && !c.holding.ok());
