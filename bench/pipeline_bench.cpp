@@ -5,7 +5,8 @@
 // it ended, the plan kept, its success rate, phase runs and wall time) and per problem and
 // law a summary: problem-seed pairs that end certified, the median success rate of the
 // certified plans, the median wall time. The goals of BENCHMARKS.md's pipeline table.
-//   build/bench/rbsf_pipeline_bench [--seeds 8] [--first-seed 1] [--trials 32]
+//   build/bench/rbsf_pipeline_bench [--seeds 8] [--first-seed 1] [--trials N]
+//                                   [--trial-batch 64] [--max-trials 512]
 //                                   [--time-limit 30] [--knots 100] [--only 30deg]
 //                                   [--law part|joints|both] [--problems FILE]
 #include <algorithm>
@@ -19,6 +20,7 @@
 #include "rbsf/bench/problem_suite.h"
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/planner/reorientation_pipeline.h"
+#include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/trajopt/plan_refinement.h"
 
@@ -27,7 +29,8 @@ namespace {
 using rbsf::bench::median;
 
 int run(int argc, char** argv) {
-  int seeds = 8, first_seed = 1, trials = 32, knots = 100;
+  int seeds = 8, first_seed = 1, knots = 100;
+  rbsf::tools::CertificateOptions certificate;
   double time_limit = 30.0;
   std::string only, law = "both", margins = "default",
                     suite = std::string(RBSF_SOURCE_DIR) + "/cells/problems/default.yaml";
@@ -39,8 +42,7 @@ int run(int argc, char** argv) {
   app.add_option("--seeds", seeds, "seeds per problem (default 8)")->check(CLI::Range(1, 1000));
   app.add_option("--first-seed", first_seed, "first seed (default 1)")
       ->check(CLI::Range(1, 1 << 30));
-  app.add_option("--trials", trials, "trials per certificate (default 32)")
-      ->check(CLI::Range(1, 100000));
+  certificate.addTo(app);
   app.add_option("--time-limit", time_limit, "search budget per run [s] (default 30)")
       ->check(CLI::Range(0.01, 1e6));
   app.add_option("--knots", knots, "optimiser collocation intervals (default 100)")
@@ -54,6 +56,8 @@ int run(int argc, char** argv) {
                  "friction cone and no normal-force floor")
       ->check(CLI::IsMember({"default", "zero"}));
   rbsf::tools::parseCommandLine(app, argc, argv);
+  rbsf::plan::CertificateSettings base;
+  certificate.apply(base);
 
   const std::vector<rbsf::bench::BenchProblem> problems = rbsf::bench::loadProblemSuite(suite);
   std::printf("%-9s %-6s %4s %-13s %-20s %8s %6s %8s  %s\n", "problem", "law", "seed", "status",
@@ -78,7 +82,7 @@ int run(int argc, char** argv) {
         s.planner.time_limit = time_limit;
         s.planner.position_tolerance = bp.position_tolerance;
         s.planner.angle_tolerance = bp.angle_tolerance;
-        s.certificate.trials = trials;
+        s.certificate = base;
         if (margins == "zero") {
           s.support.friction_uses = {1.0};
           s.support.search.support.balance.normal_margin = 0.0;
@@ -98,10 +102,12 @@ int run(int argc, char** argv) {
         }
         for (const rbsf::planner::PipelineAttempt& a : out.attempts) {
           char buf[64];
+          const std::string got =
+              std::to_string(a.certificate.successes) + "/" + std::to_string(a.certificate.trials);
           std::snprintf(buf, sizeof buf, "%s%s:%s", tried.empty() ? "" : " ",
                         a.method == "support" ? "S" : std::to_string(a.seed).c_str(),
                         !a.found            ? "none"
-                        : a.certificate.ran ? std::to_string(a.certificate.successes).c_str()
+                        : a.certificate.ran ? got.c_str()
                                             : "?");
           tried += buf;
         }

@@ -33,6 +33,7 @@
 #include "rbsf/dynamics/sensor_model.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/dynamics/state_layout.h"
+#include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
 
@@ -92,7 +93,7 @@ int run(int argc, char** argv) {
       "Exit status: 0 plan executed; 4 the plan failed its certificate (not run); 3 planning "
       "failed; 2 bad input; 1 internal error.");
   std::string cell, start_text, goal_text, theta_text = "0", limit_text = "30", seed_text = "1",
-                                           settle_text = "1", trials_text = "32";
+                                           settle_text = "1";
   bool no_pace = false, optimize = false, accept_uncertified = false;
   app.add_option("--cell", cell, "cell YAML file")->required();
   app.add_option("--start", start_text, "start pose x,y,phi (part at rest)")->required();
@@ -101,7 +102,8 @@ int run(int argc, char** argv) {
   app.add_option("--time-limit", limit_text, "planning time limit [s] (default 30)");
   app.add_option("--seed", seed_text, "planner seed (default 1)");
   app.add_option("--settle", settle_text, "holding the final pose after the plan [s] (default 1)");
-  app.add_option("--trials", trials_text, "closed-loop trials of the certificate (default 32)");
+  CertificateOptions certificate;
+  certificate.addTo(app);
   app.add_flag("--accept-uncertified", accept_uncertified,
                "execute a plan that failed its certificate (a cell should not)");
   app.add_flag("--optimize", optimize, "refine the plan with rbsf::trajopt");
@@ -120,7 +122,7 @@ int run(int argc, char** argv) {
       static_cast<std::uint32_t>(parseInteger(seed_text, "--seed", 1, 4294967295LL));
   const double settle = parseNumber(settle_text, "--settle");
   if (!(settle >= 0.0 && settle <= 60.0)) throw InputError("--settle: must be in [0, 60] s");
-  request.certificate.trials = static_cast<int>(parseInteger(trials_text, "--trials", 1, 100000));
+  certificate.apply(request.certificate);
   request.accept_uncertified = accept_uncertified;
   request.optimize = optimize;
   request.optimizer.knots = static_cast<int>(parseInteger(knots_text, "--knots", 2, 2000));

@@ -4,12 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <thread>
 #include <tuple>
 
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/plan/confidence.h"
 #include "rbsf/plan/plan_reference.h"
 
 namespace rbsf::plan {
@@ -26,9 +28,17 @@ void checkFits(const RbsfModel& model, const Plan& plan, const CertificateSettin
 }  // namespace
 
 void checkSettings(const CertificateSettings& s) {
-  if (s.trials < 1 || s.trials > 100000)
-    throw InputError("certificate: trials must be in 1..100000 (got " + std::to_string(s.trials) +
+  if (s.trials < 0 || s.trials > 100000)
+    throw InputError("certificate: trials must be in 0..100000, 0 for sequential (got " +
+                     std::to_string(s.trials) + ")");
+  if (s.batch < 1 || s.batch > 100000)
+    throw InputError("certificate: batch must be in 1..100000 (got " + std::to_string(s.batch) +
                      ")");
+  if (s.max_trials < s.batch || s.max_trials > 100000)
+    throw InputError("certificate: max_trials must be in batch..100000 (got " +
+                     std::to_string(s.max_trials) + " with batch " + std::to_string(s.batch) + ")");
+  if (!(s.confidence >= 0.5 && s.confidence < 1.0))
+    throw InputError("certificate: confidence must be in [0.5, 1)");
   if (!(s.required_rate >= 0.0 && s.required_rate <= 1.0))
     throw InputError("certificate: required_rate must be in [0, 1]");
   if (s.threads < 0) throw InputError("certificate: threads must be >= 0");
@@ -59,15 +69,54 @@ FeedbackSchedule makeSchedule(const RbsfModel& model, const Plan& plan,
                           plan.simulator, s.feedback);
 }
 
+/// The plan fails the checks that do not depend on the trials.
+bool planFails(const Certificate& c) {
+  return !c.motion.ok() || (c.holding_required && !c.holding.ok());
+}
+
 }  // namespace
+
+std::string ratesText(const Certificate& c) {
+  const bool reached = c.lower_bound >= c.required_rate;
+  // Rounded down, so that the comparison printed holds for the printed figure; more digits
+  // when three would not show it.
+  double shown = std::floor(c.lower_bound * 1000.0) / 1000.0;
+  int digits = 3;
+  if ((shown >= c.required_rate) != reached) {
+    shown = std::floor(c.lower_bound * 1e6) / 1e6;
+    digits = 6;
+  }
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "%d/%d trials succeeded (%d %%; %g %% lower confidence bound %.*f %s %g required)",
+                c.successes, c.trials, c.trials > 0 ? 100 * c.successes / c.trials : 0,
+                100.0 * c.confidence, digits, shown, reached ? ">=" : "<", c.required_rate);
+  return buf;
+}
+
+std::string stopText(const Certificate& c) {
+  if (!c.sequential) return "";
+  char buf[256];
+  int n = std::snprintf(buf, sizeof buf,
+                        "sequential, batches of %d up to %d trials: stopped after %d, ", c.batch,
+                        c.max_trials, c.trials);
+  if (c.certified)
+    std::snprintf(buf + n, sizeof buf - n, "the bound reached the required rate");
+  else if (planFails(c))
+    std::snprintf(buf + n, sizeof buf - n,
+                  "the plan fails its motion limits or holding whatever the trials");
+  else if (c.trials >= c.max_trials)
+    std::snprintf(buf + n, sizeof buf - n, "the cap");
+  else
+    std::snprintf(buf + n, sizeof buf - n,
+                  "even %d more successes would leave the bound below the required rate",
+                  c.max_trials - c.trials);
+  return buf;
+}
 
 std::string verdictText(const Certificate& c) {
   if (!c.ran) return "not certified: no trials ran";
-  char buf[512];
-  std::snprintf(buf, sizeof buf, "%s: %d/%d trials succeeded (%.0f %%, %.0f %% required)",
-                c.certified ? "certified" : "NOT certified", c.successes, c.trials,
-                100.0 * c.success_rate, 100.0 * c.required_rate);
-  std::string text = buf;
+  std::string text = (c.certified ? "certified: " : "NOT certified: ") + ratesText(c);
   if (c.worst.index >= 0 && !c.worst.success)
     text += "; worst trial " + std::to_string(c.worst.index) + ": " + c.worst.failure;
   if (!c.motion.ok()) text += "; the plan " + motionViolationText(c.motion);
@@ -101,9 +150,8 @@ std::string certificateReportText(const Certificate& c) {
                 c.trials, static_cast<unsigned long long>(c.seed),
                 c.certified ? "CERTIFIED" : "NOT CERTIFIED");
   std::string text = buf;
-  std::snprintf(buf, sizeof buf, "  %d/%d trials succeeded (%.0f %%, %.0f %% required)\n",
-                c.successes, c.trials, 100.0 * c.success_rate, 100.0 * c.required_rate);
-  text += buf;
+  text += "  " + ratesText(c) + "\n";
+  if (c.sequential) text += "  " + stopText(c) + "\n";
   text += "  worst " + worstTrialText(c) + "\n";
   if (c.worst.index >= 0 && !c.worst.success) text += "  it failed: " + c.worst.failure + "\n";
   text += "  " + motionText(c.motion) + "\n";
@@ -118,47 +166,112 @@ bool betterCertificate(const Certificate& a, const Certificate& b) {
         w.dropped || w.index < 0
             ? std::numeric_limits<double>::infinity()
             : std::max(w.position_error / c.position_tolerance, w.angle_error / c.angle_tolerance);
-    return std::make_tuple(c.ran, c.certified, c.successes, -error);
+    return std::make_tuple(c.ran, c.certified, c.lower_bound, -error);
   };
   return rank(a) > rank(b);
+}
+
+namespace {
+
+/// The trial counts at which the bound is looked at: once at a fixed count; else after
+/// every batch, the last look at the cap.
+std::vector<int> lookCounts(const CertificateSettings& s) {
+  if (s.trials > 0) return {s.trials};
+  std::vector<int> out;
+  for (int n = s.batch; out.empty() || out.back() < s.max_trials; n += s.batch)
+    out.push_back(std::min(n, s.max_trials));
+  return out;
+}
+
+/// Whether the look after `n` trials with `successes` ends the certificate (file comment
+/// of certificate.h): a fixed count's one look, a plan that fails whatever the trials, the
+/// bound reached, the cap, or futility.
+bool decided(const CertificateSettings& s, int successes, int n, bool plan_ok) {
+  if (s.trials > 0 || !plan_ok || n >= s.max_trials) return true;
+  if (clopperPearsonLower(successes, n, s.confidence) >= s.required_rate) return true;
+  const int left = s.max_trials - n;
+  return clopperPearsonLower(successes + left, s.max_trials, s.confidence) < s.required_rate;
+}
+
+}  // namespace
+
+bool runTrials(const CertificateSettings& s, bool plan_ok,
+               const std::function<TrialOutcome(int index)>& trial,
+               std::vector<TrialOutcome>& counted_outcomes, const std::atomic<bool>* cancel) {
+  checkSettings(s);
+  counted_outcomes.clear();
+  // Workers take trial indices in order until the certificate is decided; whoever completes
+  // the last trial of a batch judges it, and the batches in order, so decisions see only
+  // whole batches before them: the same bits whatever the threads. Trials taken past a
+  // decision still run (at most one per other thread) and are not counted.
+  const std::vector<int> looks = lookCounts(s);
+  const int most = looks.back();
+  std::vector<TrialOutcome> outcomes(static_cast<std::size_t>(most));
+  std::vector<int> left_in_look(looks.size());
+  for (std::size_t k = 0; k < looks.size(); ++k)
+    left_in_look[k] = looks[k] - (k == 0 ? 0 : looks[k - 1]);
+  auto lookOf = [&](int i) {
+    return s.trials > 0 ? 0 : std::min(i / s.batch, static_cast<int>(looks.size()) - 1);
+  };
+  std::atomic<int> next{0};
+  std::atomic<bool> stop{false};
+  std::mutex mutex;  // guards what follows, and the outcomes of trials being judged
+  std::exception_ptr error;
+  std::size_t judged = 0;
+  int successes = 0, counted = 0;
+  auto judge = [&] {
+    while (counted == 0 && judged < looks.size() && left_in_look[judged] == 0) {
+      const int from = judged == 0 ? 0 : looks[judged - 1], to = looks[judged];
+      for (int i = from; i < to; ++i) successes += outcomes[static_cast<std::size_t>(i)].success;
+      ++judged;
+      if (decided(s, successes, to, plan_ok)) {
+        counted = to;
+        stop = true;
+      }
+    }
+  };
+  auto worker = [&] {
+    while (!stop && !(cancel && cancel->load())) {
+      const int i = next++;
+      if (i >= most) return;
+      try {
+        TrialOutcome o = trial(i);
+        o.index = i;
+        const std::lock_guard<std::mutex> lock(mutex);
+        outcomes[static_cast<std::size_t>(i)] = std::move(o);
+        --left_in_look[static_cast<std::size_t>(lookOf(i))];
+        judge();
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (!error) error = std::current_exception();
+        stop = true;
+      }
+    }
+  };
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = std::min(most, s.threads > 0 ? s.threads : cores);
+  std::vector<std::thread> pool;
+  for (int k = 1; k < threads; ++k) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  if (counted == 0) return false;  // cancelled before the decision
+  outcomes.resize(static_cast<std::size_t>(counted));
+  counted_outcomes = std::move(outcomes);
+  return true;
 }
 
 Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateSettings& s,
                     std::vector<TrialOutcome>* all, const std::atomic<bool>* cancel) {
   checkFits(model, plan, s);
   const FeedbackSchedule schedule = makeSchedule(model, plan, s);
-  std::vector<TrialOutcome> outcomes(static_cast<std::size_t>(s.trials));
-  std::atomic<int> next{0};
-  std::mutex error_mutex;
-  std::exception_ptr error;
-  auto worker = [&] {
-    for (;;) {
-      const int i = next++;
-      if (i >= s.trials || (cancel && cancel->load())) return;
-      try {
-        const TrialDraw draw = drawTrial(model.cell(), plan, s.seed, i);
-        outcomes[static_cast<std::size_t>(i)] =
-            runTrial(schedule, plan, draw, s.trial, s.open_loop);
-        outcomes[static_cast<std::size_t>(i)].index = i;
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-        next = s.trials;
-      }
-    }
-  };
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int threads = std::min(s.trials, s.threads > 0 ? s.threads : cores);
-  std::vector<std::thread> pool;
-  for (int k = 1; k < threads; ++k) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
-
   Certificate c;
   c.law = s.open_loop ? "open loop" : schedule.partFeedback() ? "part feedback" : "joint feedback";
-  c.trials = s.trials;
+  c.confidence = s.confidence;
   c.required_rate = s.required_rate;
+  c.sequential = s.trials == 0;
+  c.batch = c.sequential ? s.batch : 0;
+  c.max_trials = c.sequential ? s.max_trials : 0;
   c.seed = s.seed;
   c.settle_time = s.feedback.settle_time;
   c.position_tolerance = s.trial.position_tolerance;
@@ -167,18 +280,32 @@ Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateS
   c.rest_angular_speed = s.trial.rest_angular_speed;
   c.sensing = model.cell().sensing;
   c.uncertainty = model.cell().uncertainty;
-  if (cancel && cancel->load()) return c;
+  // The checks that do not depend on the trials come first: a sequential certificate of a
+  // plan that fails them stops at its first look.
+  c.motion = measureMotion(plan, model.cell().motion_limits);
+  c.holding_required = !s.open_loop && !schedule.partFeedback();
+  if (c.holding_required) c.holding = measureHolding(model, plan, s.holding);
+  const bool plan_ok = !planFails(c);
+
+  std::vector<TrialOutcome> outcomes;
+  const bool done = runTrials(
+      s, plan_ok,
+      [&](int i) {
+        return runTrial(schedule, plan, drawTrial(model.cell(), plan, s.seed, i), s.trial,
+                        s.open_loop);
+      },
+      outcomes, cancel);
+  if (!done || (cancel && cancel->load())) return c;
+
   c.ran = true;
   for (const TrialOutcome& o : outcomes) {
     c.successes += o.success ? 1 : 0;
     if (c.worst.index < 0 || badness(o, s.trial) > badness(c.worst, s.trial)) c.worst = o;
   }
+  c.trials = static_cast<int>(outcomes.size());
   c.success_rate = static_cast<double>(c.successes) / c.trials;
-  c.motion = measureMotion(plan, model.cell().motion_limits);
-  c.holding_required = !s.open_loop && !schedule.partFeedback();
-  if (c.holding_required) c.holding = measureHolding(model, plan, s.holding);
-  c.certified =
-      c.success_rate >= s.required_rate && c.motion.ok() && (!c.holding_required || c.holding.ok());
+  c.lower_bound = clopperPearsonLower(c.successes, c.trials, s.confidence);
+  c.certified = c.lower_bound >= s.required_rate && plan_ok;
   if (all) *all = std::move(outcomes);
   return c;
 }

@@ -1,8 +1,10 @@
 #include "certificate_json.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/plan/confidence.h"
 
 namespace rbsf::plan {
 
@@ -87,6 +89,8 @@ json certificateJson(const Certificate& c) {
               {"trials", c.trials},
               {"successes", c.successes},
               {"success_rate", c.success_rate},
+              {"lower_bound", c.lower_bound},
+              {"confidence", c.confidence},
               {"required_rate", c.required_rate},
               {"certified", c.certified},
               {"seed", c.seed},
@@ -107,6 +111,10 @@ json certificateJson(const Certificate& c) {
                 {"initial_angle", u.initial_angle},
                 {"actuator_gain", u.actuator_gain}}},
               {"worst", worst}};
+  if (c.sequential)
+    out["sequential"] = {{"batch", c.batch}, {"max_trials", c.max_trials}};
+  else
+    out["sequential"] = false;
   const PlanMotion& m = c.motion;
   if (m.measured)
     out["motion"] = {{"peak_speed", m.peak_speed},
@@ -136,8 +144,32 @@ Certificate readCertificateJson(const json& j, const std::string& where) {
   c.trials = static_cast<int>(rd.integer(j, "trials", 1, 100000));
   c.successes = static_cast<int>(rd.integer(j, "successes", 0, c.trials));
   c.success_rate = rd.num(j, "success_rate");
+  c.confidence = rd.num(j, "confidence");
+  if (!(c.confidence >= 0.5 && c.confidence < 1.0))
+    throw InputError(where + ".confidence must be in [0.5, 1)");
+  // The bound follows from the counts: a file whose bound does not is refused, not trusted.
+  c.lower_bound = rd.num(j, "lower_bound");
+  const double bound = clopperPearsonLower(c.successes, c.trials, c.confidence);
+  if (!(std::abs(c.lower_bound - bound) <= 1e-9)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  ".lower_bound must be the %g %% lower confidence bound of %d/%d trials (%.6g)",
+                  100.0 * c.confidence, c.successes, c.trials, bound);
+    throw InputError(where + buf);
+  }
   c.required_rate = rd.num(j, "required_rate");
   c.certified = rd.boolean(j, "certified");
+  const json& sequential = rd.need(j, "sequential");
+  if (sequential.is_object()) {
+    const Reader qr = rd.sub("sequential");
+    c.sequential = true;
+    c.batch = static_cast<int>(qr.integer(sequential, "batch", 1, 100000));
+    c.max_trials = static_cast<int>(qr.integer(sequential, "max_trials", c.batch, 100000));
+    if (c.trials > c.max_trials)
+      throw InputError(where + ".trials must be at most sequential.max_trials");
+  } else if (!(sequential.is_boolean() && !sequential.get<bool>())) {
+    throw InputError(where + ".sequential must be false or {batch, max_trials}");
+  }
   const json& seed = rd.need(j, "seed");
   if (!seed.is_number_unsigned()) throw InputError(where + ".seed must be an unsigned integer");
   c.seed = seed.get<std::uint64_t>();

@@ -187,15 +187,21 @@ TEST(RbsfBench, OptimizeRunsTheProductsRefinementAndRecordsItsCertificate) {
   const std::string db = out + "/logs/benchmark.db";
   const std::string solved = sql(db, "SELECT COUNT(*) FROM runs WHERE solved = 1;");
   ASSERT_NE(solved, "0\n") << "no exact plan within 20 s: nothing was refined";
-  // Every solved run was refined and judged; a certified kept plan holds 95 % of its trials,
+  // Every solved run was refined and judged; a certified kept plan's lower confidence bound
+  // is at least 0.95 (so is its rate), the sequential certificate ran whole batches of 64,
   // and a kept refinement converged.
   EXPECT_EQ(sql(db,
                 "SELECT COUNT(*) FROM runs WHERE solved = 1 AND (certified IS NULL OR "
-                "refined_chosen IS NULL OR certificate_success_rate IS NULL);"),
+                "refined_chosen IS NULL OR certificate_success_rate IS NULL OR "
+                "certificate_lower_bound IS NULL OR certificate_trials IS NULL);"),
             "0\n");
   EXPECT_EQ(sql(db,
                 "SELECT COUNT(*) FROM runs WHERE certified = 1 AND "
-                "certificate_success_rate < 0.95;"),
+                "(certificate_lower_bound < 0.95 OR certificate_success_rate < 0.95);"),
+            "0\n");
+  EXPECT_EQ(sql(db,
+                "SELECT COUNT(*) FROM runs WHERE solved = 1 AND (certificate_trials % 64 != 0 "
+                "OR certificate_trials < 64 OR certificate_trials > 512);"),
             "0\n");
   EXPECT_EQ(sql(db,
                 "SELECT COUNT(*) FROM runs WHERE refined_chosen = 1 AND "

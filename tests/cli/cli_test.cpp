@@ -364,11 +364,13 @@ bool allFinite(const nlohmann::json& j) {
 }
 
 TEST(PlanReorientation, TheDefaultPipelineWritesTheFirstCertifiedPlan) {
-  // -30 deg: the support planner's plan certifies, so no kinodynamic search runs.
+  // -30 deg: the support planner's plan certifies, so no kinodynamic search runs. Few trials
+  // and a required rate they can meet (4 of 4 bound the rate at 0.47): the pipeline, not the
+  // rate, is under test.
   const std::string out = writeTemp("pipeline.json", "");
   const Result r = run(kPlan + " --cell " + kCells +
                        "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-30deg --quiet --trials 4"
-                       " --out " +
+                       " --required-rate 0.4 --out " +
                        out);
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
@@ -639,6 +641,11 @@ TEST(PlanReorientation, BadInputIsRefusedWithExitTwo) {
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --goal-angle round", "--goal-angle"},
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --trials 0", "--trials"},
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --trials 2.5", "--trials"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --max-trials 0", "--max-trials"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --trial-batch -4", "--trial-batch"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --trials 64 --max-trials 128", "--max-trials"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --confidence 1", "--confidence"},
+      {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --required-rate -0.5", "--required-rate"},
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --trial-seed 0", "--trial-seed"},
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --friction-use 0", "--friction-use"},
       {"--start 0.1,0.40,0 --goal 0.1,0.4,10deg --friction-use 0.45,1.5", "--friction-use"},

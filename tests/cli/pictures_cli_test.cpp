@@ -199,7 +199,7 @@ TEST(PlanPictures, TheReportLoadsInChromiumWithItsVerdictScaleLegendGoalBandAndL
   const std::string html = temp("chromium_report.html"), png = temp("chromium_report.png");
   const Result plan = run(kPlanExe + " --cell " + kCellDir +
                           "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --quiet "
-                          "--trials 4 --report " +
+                          "--trials 4 --required-rate 0.4 --report " +
                           html);
   ASSERT_EQ(plan.status, 0) << plan.out << plan.err;
   const Result dom = renderInChromium(html);

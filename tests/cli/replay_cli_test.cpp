@@ -77,6 +77,28 @@ TEST(Replay, AHeavierPartFailsAndTheReportSaysWhereItLeftThePath) {
   EXPECT_NE(r.out.find("left the planned path at t = "), std::string::npos) << r.out;
 }
 
+TEST(Replay, TheSequentialDefaultSaysHowItStopped) {
+  // The kinodynamic plan breaks the cell's motion limits: whatever its trials it cannot be
+  // certified, so the sequential certificate stops after its first batch (here of 8).
+  const std::string out = writeTemp("replay_sequential.json", "");
+  const Result r = run(kReplay + " --cell " + kCellsDir + "default.yaml --plan " + smallPlan() +
+                       " --trial-batch 8 --max-trials 40 --out " + out);
+  EXPECT_EQ(r.status, 4) << r.err;
+  const auto c = nlohmann::json::parse(slurp(out))["certificate"];
+  EXPECT_EQ(c["trials"], 8);
+  EXPECT_EQ(c["sequential"]["batch"], 8);
+  EXPECT_EQ(c["sequential"]["max_trials"], 40);
+  EXPECT_EQ(c["confidence"], 0.95);
+  EXPECT_GE(c["lower_bound"].get<double>(), 0.0);
+  EXPECT_LE(c["lower_bound"].get<double>(), c["success_rate"].get<double>());
+  EXPECT_NE(r.out.find("sequential, batches of 8 up to 40 trials: stopped after 8, the plan fails "
+                       "its motion limits or holding"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("% lower confidence bound "), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("NOT certified: "), std::string::npos) << r.err;
+}
+
 TEST(Replay, OpenLoopIsTheLawNamed) {
   const std::string out = writeTemp("replay_open.json", "");
   const Result r = run(kReplay + " --cell " + kCellsDir + "default.yaml --plan " + smallPlan() +
@@ -102,6 +124,16 @@ TEST(Replay, BadInputExitsTwoAndWritesNothing) {
       {"--cell " + two, "the plan is for 3 fingers"},
       {"--cell " + kCellsDir + "default.yaml --trials 0", "--trials"},
       {"--cell " + kCellsDir + "default.yaml --trials 1.5", "--trials"},
+      {"--cell " + kCellsDir + "default.yaml --trial-batch 0", "--trial-batch"},
+      {"--cell " + kCellsDir + "default.yaml --max-trials 100001", "--max-trials"},
+      {"--cell " + kCellsDir + "default.yaml --trial-batch 128 --max-trials 64", "--max-trials"},
+      {"--cell " + kCellsDir + "default.yaml --trial-batch 1024", "--trial-batch"},
+      {"--cell " + kCellsDir + "default.yaml --trials 8 --max-trials 64", "--max-trials"},
+      {"--cell " + kCellsDir + "default.yaml --trials 8 --trial-batch 4", "--trial-batch"},
+      {"--cell " + kCellsDir + "default.yaml --confidence 1", "--confidence"},
+      {"--cell " + kCellsDir + "default.yaml --confidence 0.2", "--confidence"},
+      {"--cell " + kCellsDir + "default.yaml --required-rate 1.01", "--required-rate"},
+      {"--cell " + kCellsDir + "default.yaml --required-rate x", "--required-rate"},
       {"--cell " + kCellsDir + "default.yaml --seed -2", "--seed"},
       {"--cell /nonexistent.yaml", "/nonexistent.yaml"},
   };

@@ -11,6 +11,7 @@
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/plan/confidence.h"
 #include "rbsf/plan/plan_holding.h"
 #include "rbsf/planner/reorientation_pipeline.h"
 
@@ -32,12 +33,14 @@ Problem turn(double degrees) {
   return p;
 }
 
-/// Few trials: the tests are about the composition, not the rates.
+/// Few trials: the tests are about the composition, not the rates. 4 of 4 bound the rate at
+/// 0.47 (95 % confidence), so a plan that passes them certifies at 0.4.
 PipelineSettings fewTrials(PipelineSettings::Method method) {
   PipelineSettings s;
   s.method = method;
   s.planner.time_limit = 60.0;
   s.certificate.trials = 4;
+  s.certificate.required_rate = 0.4;
   return s;
 }
 
@@ -154,7 +157,10 @@ TEST(ReorientationPipeline, BadSettingsAndProblemsAreInputErrors) {
   // Every stage's settings are checked when the pipeline is made, before any search: a bad
   // certificate or decisive-modes setting never costs a plan.
   s = {};
-  s.certificate.trials = 0;
+  s.certificate.trials = -1;
+  EXPECT_THROW(ReorientationPipeline(model, s), InputError);
+  s = {};
+  s.certificate.max_trials = s.certificate.batch - 1;
   EXPECT_THROW(ReorientationPipeline(model, s), InputError);
   s = {};
   s.planner.decisive_modes.cone_margin = 1.5;
@@ -168,20 +174,38 @@ TEST(ReorientationPipeline, BadSettingsAndProblemsAreInputErrors) {
   EXPECT_THROW(pipeline.run(far), InputError);
 }
 
-TEST(BetterCertificate, CertifiedBeforeMoreSuccessesBeforeSmallerError) {
+TEST(BetterCertificate, CertifiedBeforeAHigherLowerBoundBeforeSmallerError) {
   Certificate a, b;
   a.ran = b.ran = true;
   a.position_tolerance = b.position_tolerance = 0.01;
   a.angle_tolerance = b.angle_tolerance = 0.035;
   a.worst.index = b.worst.index = 0;
-  a.successes = 10;
-  b.successes = 12;  // more successes, but its plan breaks the motion limits
+  auto counts = [](Certificate& c, int successes, int trials) {
+    c.successes = successes;
+    c.trials = trials;
+    c.success_rate = static_cast<double>(successes) / trials;
+    c.lower_bound = clopperPearsonLower(successes, trials, 0.95);
+  };
+  counts(a, 10, 12);
+  counts(b, 12, 12);  // more successes, but its plan breaks the motion limits
   a.certified = true;
   EXPECT_TRUE(betterCertificate(a, b));
   EXPECT_FALSE(betterCertificate(b, a));
   a.certified = false;
   EXPECT_TRUE(betterCertificate(b, a));
-  a.successes = 12;
+  // The bound, not the count nor the rate: 120 of 128 (0.94) is stronger evidence than 4 of
+  // 4 (1.0), and 60 of 64 than 110 of 128.
+  counts(a, 120, 128);
+  counts(b, 4, 4);
+  EXPECT_GT(a.lower_bound, b.lower_bound);
+  EXPECT_TRUE(betterCertificate(a, b));
+  EXPECT_FALSE(betterCertificate(b, a));
+  counts(a, 60, 64);
+  counts(b, 110, 128);
+  EXPECT_TRUE(betterCertificate(a, b));
+  // Equal bounds: the smaller error of the worst trial.
+  counts(a, 12, 12);
+  counts(b, 12, 12);
   a.worst.position_error = 0.002;
   b.worst.position_error = 0.004;
   EXPECT_TRUE(betterCertificate(a, b));
@@ -189,6 +213,11 @@ TEST(BetterCertificate, CertifiedBeforeMoreSuccessesBeforeSmallerError) {
   a.worst.position_error = 0.009;
   EXPECT_TRUE(betterCertificate(a, b));
   EXPECT_FALSE(betterCertificate(a, a));
+  // No success in either (bound 0 whatever the count): the error decides.
+  counts(a, 0, 64);
+  counts(b, 0, 512);
+  EXPECT_TRUE(betterCertificate(a, b));
+  EXPECT_FALSE(betterCertificate(b, a));
   Certificate never;
   EXPECT_TRUE(betterCertificate(b, never));
 }

@@ -99,7 +99,8 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
       for (const char* key :
            {"optimizer success BOOLEAN", "optimizer status ENUM", "optimizer iterations INTEGER",
             "optimizer time REAL", "cost before REAL", "cost after REAL", "cost reduction REAL",
-            "refined chosen BOOLEAN", "certified BOOLEAN", "certificate success rate REAL"})
+            "refined chosen BOOLEAN", "certified BOOLEAN", "certificate success rate REAL",
+            "certificate lower bound REAL", "certificate trials INTEGER"})
         run[key] = "";
     run["run index INTEGER"] = std::to_string(spec.run);
     run["seed INTEGER"] = std::to_string(spec.seed);
@@ -142,6 +143,8 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
     run["refined chosen BOOLEAN"] = out.refined ? "1" : "0";
     run["certified BOOLEAN"] = out.plan.certificate.certified ? "1" : "0";
     run["certificate success rate REAL"] = num(out.plan.certificate.success_rate);
+    run["certificate lower bound REAL"] = num(out.plan.certificate.lower_bound);
+    run["certificate trials INTEGER"] = std::to_string(out.plan.certificate.trials);
   });
   // One run, no console output, no path simplification (geometric only).
   const ompl::tools::Benchmark::Request request(rs.time_limit, 4096.0, 1, 0.05, false, false,

@@ -102,8 +102,11 @@ void PlanOutputs::write(const RbsfModel& model, const plan::Plan& plan) const {
         verdict = {true, c.certified, plan::verdictText(c),
                    "Law: " + c.law + ". Worst " + plan::worstTrialText(c) + "."};
         rows.emplace_back("certificate",
-                          format("%.0f trials, seed %.0f, %.0f %% required", c.trials,
-                                 static_cast<double>(c.seed), 100.0 * c.required_rate));
+                          format("%.0f trials, seed %.0f", c.trials, static_cast<double>(c.seed)) +
+                              "; " +
+                              (c.sequential ? plan::stopText(c) : std::string("a fixed count")) +
+                              format("; certified when the %g %% lower confidence bound is >= %g",
+                                     100.0 * c.confidence, c.required_rate));
       } else {
         verdict = {true, false, "not certified: no closed-loop trials were run",
                    "Without the evidence of closed-loop trials this plan may not run on a cell."};

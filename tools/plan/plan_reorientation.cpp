@@ -2,9 +2,10 @@
 // Plan, refine and certify until a plan certifies or the time limit is spent
 // (rbsf/planner/reorientation_pipeline.h): the support planner, then the kinodynamic
 // planner seed after seed; each exact kinodynamic plan refined by the trajectory optimiser
-// unless --no-optimize (rbsf/trajopt/plan_refinement.h); every plan run --trials times
-// closed loop under the cell's sensing and uncertainty (rbsf/plan/certificate.h). The
-// first certified plan is written, else the best one, marked not certified.
+// unless --no-optimize (rbsf/trajopt/plan_refinement.h); every plan run closed loop under
+// the cell's sensing and uncertainty and judged by the lower confidence bound of its
+// success rate (rbsf/plan/certificate.h). The first certified plan is written, else the
+// best one, marked not certified.
 //
 // Exit status: 0 a certified plan written; 4 an exact plan written but not certified
 // (verdict and worst trial on stderr); 3 time limit without an exact plan (where the
@@ -27,6 +28,7 @@
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/planner/reorientation_pipeline.h"
+#include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
 #include "rbsf/tools/tool_main.h"
@@ -43,7 +45,8 @@ struct Options {
       start_theta = "0", planner = "auto", attempts = "0", time_limit = "30", seed = "1", out, csv,
       svg, report, svg_still = "0", knots = "100", optimize_time_limit = "30",
       optimize_iterations = "500", optimize_tolerance = "1e-6", goal_angle = "nearest",
-      trials = "32", trial_seed = "1", friction_use, support_lattice;
+      trial_seed = "1", friction_use, support_lattice;
+  CertificateOptions certificate;
   bool quiet = false, no_optimize = false, reproducible = false, no_decisive_modes = false;
 };
 
@@ -125,11 +128,14 @@ int run(int argc, char** argv) {
       "Poses: COM x,y [m] and angle (radians, or degrees with a deg suffix).",
       "plan-reorientation"};
   app.footer(
-      "Every plan written is certified: replayed --trials times in closed loop under the "
-      "cell's sensing and uncertainty (cell keys sensing and uncertainty) and judged by "
-      "outcome: the part ends at rest within 1 cm and 2 degrees of the goal, never dropped, "
-      "inputs within their limits, the plan within the cell's motion limits; certified when "
-      "95 % of the trials succeed. Planning goes on until a plan certifies: the support "
+      "Every plan written is certified: replayed in closed loop under the cell's sensing and "
+      "uncertainty (cell keys sensing and uncertainty) and judged by outcome: the part ends "
+      "at rest within 1 cm and 2 degrees of the goal, never dropped, inputs within their "
+      "limits, the plan within the cell's motion limits; certified when the one-sided 95 % "
+      "Clopper-Pearson lower bound of the success rate is at least 0.95 (--confidence, "
+      "--required-rate), the trials run in batches of 64 until the bound decides, at most 512 "
+      "(--trial-batch, --max-trials), or exactly --trials N. Planning goes on until a plan "
+      "certifies: the support "
       "planner, then kinodynamic seeds while --time-limit lasts; exact kinodynamic plans are "
       "refined by the trajectory optimiser (unless --no-optimize). The first certified plan "
       "is written, else the best one found, marked not certified.\n"
@@ -184,8 +190,7 @@ int run(int argc, char** argv) {
   app.add_option("--optimize-tolerance", o.optimize_tolerance,
                  "optimiser convergence tolerance, Ipopt's tol in (0, 1] (default 1e-6; 1e-4 "
                  "takes about a quarter fewer iterations, see docs/optimiser.md)");
-  app.add_option("--trials", o.trials,
-                 "closed-loop trials of the certificate, 1..100000 (default 32)");
+  o.certificate.addTo(app);
   app.add_option("--trial-seed", o.trial_seed,
                  "seed of the certificate's draws, positive integer (default 1)");
   app.add_option("--friction-use", o.friction_use,
@@ -228,7 +233,7 @@ int run(int argc, char** argv) {
   if (!(opt_settings.tolerance > 0.0 && opt_settings.tolerance <= 1.0))
     throw InputError("--optimize-tolerance: must be in (0, 1] (got " + o.optimize_tolerance + ")");
   plan::CertificateSettings& certificate = pipeline.certificate;
-  certificate.trials = static_cast<int>(parseInteger(o.trials, "--trials", 1, 100000));
+  o.certificate.apply(certificate);
   certificate.seed =
       static_cast<std::uint64_t>(parseInteger(o.trial_seed, "--trial-seed", 1, 1LL << 53));
   parseSupportOptions(o.friction_use, o.support_lattice, pipeline.support);

@@ -1,8 +1,9 @@
 // rbsf-replay: the certificate of a plan on a cell (rbsf/plan/certificate.h): the plan
-// replayed --trials times in closed loop under the cell's sensing and uncertainty, judged
-// by outcome. The cell may differ from the one the plan was made for (the parameters
-// measured on the real cell); on the planning cell, with the certificate's seed and
-// trials, it reproduces the plan file's certificate exactly.
+// replayed in closed loop under the cell's sensing and uncertainty (--trials times, or in
+// batches until the lower confidence bound of the success rate decides), judged by
+// outcome. The cell may differ from the one the plan was made for (the parameters measured
+// on the real cell); on the planning cell, with the certificate's seed and trial settings,
+// it reproduces the plan file's certificate exactly.
 //
 // Exit status: 0 certified; 4 not certified (verdict on stderr); 2 bad input (option,
 // value, file, a plan for another number of fingers); 130 stopped by SIGINT, 143 by
@@ -17,6 +18,7 @@
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/trajectory_sample.h"
 #include "rbsf/plan/certificate.h"
+#include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
 #include "rbsf/tools/run_files.h"
@@ -29,24 +31,29 @@ constexpr int kExitNotCertified = 4;
 
 int run(int argc, char** argv) {
   CLI::App app{
-      "Certify a plan on a cell: replay it --trials times in closed loop under the cell's "
-      "sensing and uncertainty (cell keys sensing and uncertainty) and judge each trial by "
-      "outcome (the part ends at rest within 1 cm and 2 degrees of the goal, never dropped, "
-      "inputs within their limits); certified when 95 % of the trials succeed.",
+      "Certify a plan on a cell: replay it in closed loop under the cell's sensing and "
+      "uncertainty (cell keys sensing and uncertainty) and judge each trial by outcome (the "
+      "part ends at rest within 1 cm and 2 degrees of the goal, never dropped, inputs within "
+      "their limits); certified when the one-sided 95 % Clopper-Pearson lower bound of the "
+      "success rate is at least 0.95 (--confidence, --required-rate). The trials run in "
+      "batches of 64 until that bound decides, at most 512 (--trial-batch, --max-trials), or "
+      "exactly --trials N.",
       "rbsf-replay"};
   app.footer(
       "The law is the control law of the cell's sensing (part feedback, or joint feedback "
       "with part_pose: none), or the plan's inputs alone with --open-loop. With the plan's "
-      "own cell and its certificate's --seed and --trials, the report equals the plan "
-      "file's certificate.\n"
+      "own cell and its certificate's seed and trial settings (--seed; --trials for a fixed "
+      "count, else --trial-batch and --max-trials), the report equals the plan file's "
+      "certificate.\n"
       "Exit status: 0 certified; 4 not certified (verdict on stderr); 2 bad input (option, "
       "value, file, a plan for another number of fingers), one message on stderr; 130 "
       "stopped by SIGINT, 143 by SIGTERM, nothing written; 1 internal error.");
-  std::string cell, plan_path, trials_text = "32", seed_text = "1", out, csv;
+  std::string cell, plan_path, seed_text = "1", out, csv;
   bool open_loop = false;
+  CertificateOptions certificate;
   app.add_option("--cell", cell, "cell YAML file (may differ from the planning cell)")->required();
   app.add_option("--plan", plan_path, "plan JSON file (plan-reorientation --out)")->required();
-  app.add_option("--trials", trials_text, "closed-loop trials, 1..100000 (default 32)");
+  certificate.addTo(app);
   app.add_option("--seed", seed_text, "seed of the draws, positive integer (default 1)");
   app.add_flag("--open-loop", open_loop, "the plan's inputs alone, no feedback");
   app.add_option("--out", out, "write the certificate as JSON");
@@ -54,7 +61,7 @@ int run(int argc, char** argv) {
   parseCommandLine(app, argc, argv);
 
   plan::CertificateSettings settings;
-  settings.trials = static_cast<int>(parseInteger(trials_text, "--trials", 1, 100000));
+  certificate.apply(settings);
   settings.seed = static_cast<std::uint64_t>(parseInteger(seed_text, "--seed", 1, 1LL << 53));
   settings.open_loop = open_loop;
   RunFiles files;  // no output replaces an input, another output or a special file

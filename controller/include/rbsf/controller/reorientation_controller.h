@@ -89,8 +89,9 @@ struct ReorientationRequest {
   ///        one the plan with the better certificate is published (plan_refinement.h).
   bool optimize = false;
   trajopt::OptimizerSettings optimizer;  ///< its `cancel` is replaced as well
-  /// \brief How the plan is certified (trials, seed, criteria); the trials run on the
-  ///        worker thread, on every core.
+  /// \brief How the plan is certified (a fixed count of trials or the sequential default,
+  ///        the confidence bound, seed, criteria: plan/certificate.h); the trials run on
+  ///        the worker thread, on every core.
   plan::CertificateSettings certificate;
   /// \brief Which planners (reorientation_pipeline.h). The default, the kinodynamic planner
   ///        alone, suits a cell that senses the part; kAuto tries the support planner (plans

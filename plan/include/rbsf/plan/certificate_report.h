@@ -39,13 +39,22 @@ struct TrialOutcome {
 struct Certificate {
   bool ran = false;
   std::string law;  ///< "part feedback", "joint feedback" or "open loop"
-  int trials = 0;
+  int trials = 0;   ///< trials run and counted
   int successes = 0;
   double success_rate = 0.0;  ///< successes / trials
-  /// \brief Certified when success_rate >= this, motion.ok() and, when holding_required,
+  /// \brief The one-sided Clopper-Pearson lower bound of the success rate at `confidence`
+  ///        (confidence.h).
+  double lower_bound = 0.0;
+  double confidence = 0.95;
+  /// \brief Certified when lower_bound >= this, motion.ok() and, when holding_required,
   ///        holding.ok().
   double required_rate = 0.95;
   bool certified = false;
+  /// \brief The trials ran in batches until the bound decided (certificate.h); false: a
+  ///        fixed count.
+  bool sequential = false;
+  int batch = 0;                    ///< sequential: trials between two looks at the bound
+  int max_trials = 0;               ///< sequential: the cap on trials
   std::uint64_t seed = 0;           ///< the draws' seed: the same seed gives the same certificate
   double settle_time = 0.0;         ///< held at rest after the plan's end [s]
   double position_tolerance = 0.0;  ///< [m]
@@ -69,12 +78,25 @@ std::string certificateJsonText(const Certificate& certificate);
 std::string worstTrialText(const Certificate& certificate);
 
 /// \brief The report a tool prints: "certificate (<law>, <N> trials, seed <S>): CERTIFIED" or
-///        "NOT CERTIFIED", the share of successes, the worst trial (worstTrialText) and,
-///        when it failed, why; then the plan's motion (motionText) and, when required, its
+///        "NOT CERTIFIED", the successes and the bound (ratesText), for a sequential
+///        certificate how it stopped (stopText), the worst trial (worstTrialText) and, when
+///        it failed, why; then the plan's motion (motionText) and, when required, its
 ///        holding (holdingText). Lines end in newlines.
 std::string certificateReportText(const Certificate& certificate);
 
-/// \brief The one-line verdict: "certified: 31/32 trials (97 %)" or "NOT certified: ...,
+/// \brief The successes and the bound: "64/64 trials succeeded (100 %; 95 % lower confidence
+///        bound 0.954 >= 0.95 required)" (">=" or "<"; the bound rounded down, so that the
+///        comparison reads true).
+std::string ratesText(const Certificate& certificate);
+
+/// \brief How a sequential certificate stopped: "sequential, batches of 64 up to 512
+///        trials: stopped after 64, the bound reached the required rate" (or "... after 192:
+///        even 320 more successes would leave the bound below the required rate", "... the
+///        cap reached", "... after 64: the plan fails its motion limits or holding, whatever
+///        the trials"); empty for a fixed count.
+std::string stopText(const Certificate& certificate);
+
+/// \brief The one-line verdict: "certified: <ratesText>" or "NOT certified: <ratesText>;
 ///        worst trial 7: <its failure>" (and "; the plan <motionViolationText>" when the
 ///        plan breaks the motion limits, "; the joints alone do not hold the part ..." when
 ///        its holding is required and fails).

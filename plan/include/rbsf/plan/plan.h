@@ -34,8 +34,14 @@
 /// |                 | (true: the plan in the file is the optimised one), |
 /// |                 | `refined_success_rate` (the optimised plan's certificate, when |
 /// |                 | it ran) and `message` (why it failed or was not chosen) |
-/// | `certificate`   | when the plan was certified (certificate.h): `law`, `trials`, |
-/// |                 | `successes`, `success_rate`, `required_rate`, `certified`, |
+/// | `certificate`   | when the plan was certified (certificate.h): `law`, `trials` |
+/// |                 | (run and counted), `successes`, `success_rate`, `lower_bound` |
+/// |                 | (the one-sided Clopper-Pearson lower bound of the rate, |
+/// |                 | confidence.h; checked against the counts on reading), |
+/// |                 | `confidence`, `required_rate`, `certified` (`lower_bound` >= |
+/// |                 | `required_rate`, and the motion and holding checks), |
+/// |                 | `sequential` (`false` for a fixed count, else {`batch`, |
+/// |                 | `max_trials`}), |
 /// |                 | `seed`, `criteria` {`position_tolerance` [m], `angle_tolerance` |
 /// |                 | [rad], `rest_speed` [m/s], `rest_angular_speed` [rad/s], |
 /// |                 | `settle_time` [s]}, the `sensing` and `uncertainty` used (cell |

@@ -8,8 +8,10 @@
 /// the refinement is certified; when that refinement is not certified, the optimiser runs
 /// once more with OptimizerSettings::min_slip_rate = retry_min_slip_rate (sliding contacts
 /// kept clearly sliding) and that refinement is certified too. The better certificate
-/// wins: more successes, then the smaller final error of its worst trial; on a tie the
-/// earlier candidate (the planner's plan first) is kept.
+/// wins (plan::betterCertificate): certified, then the higher lower confidence bound of the
+/// success rate (sequential certificates of the candidates may stop after different numbers
+/// of trials), then the smaller final error of its worst trial; on a tie the earlier
+/// candidate (the planner's plan first) is kept.
 
 #include <atomic>
 #include <functional>

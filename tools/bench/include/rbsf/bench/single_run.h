@@ -24,7 +24,9 @@
 ///     "optimizer status" in the log), `optimizer iterations INTEGER`, `optimizer time REAL`,
 ///     `cost before REAL`, `cost after REAL`, `cost reduction REAL` (1 - after / before) of
 ///     the summarised solve; `refined chosen BOOLEAN` (the refinement is the plan kept),
-///     `certified BOOLEAN` and `certificate success rate REAL` of the plan kept.
+///     `certified BOOLEAN`, `certificate success rate REAL`, `certificate lower bound REAL`
+///     (its Clopper-Pearson lower bound, plan/confidence.h) and `certificate trials INTEGER`
+///     (the default sequential certificate's count) of the plan kept.
 
 #include <string>
 
