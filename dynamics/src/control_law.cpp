@@ -29,6 +29,7 @@ constexpr int kQpSweeps = 8;
 ControlLaw::ControlLaw(const FeedbackSchedule& schedule)
     : schedule_(schedule),
       ws_(std::make_unique<SimulatorWorkspace>(schedule.model().numFingers())),
+      qp_(schedule.model()),
       state_(VecQ::Zero(schedule.model().configDim()), VecQ::Zero(schedule.model().configDim())) {
   const double h = schedule.timeStep();
   const PartPoseSensing& camera = schedule.sensing().part_pose;
@@ -66,6 +67,9 @@ ControlLaw::ControlLaw(const FeedbackSchedule& schedule)
 
 void ControlLaw::reset() {
   step_ = -1;
+  start_set_ = false;
+  loose_.fill(false);
+  pulled_.fill(0.0);
   num_pending_ = 0;
   dropped_ = 0;
   demand_.setZero();
@@ -205,6 +209,26 @@ bool ControlLaw::computeJointOnly(double t, const VecU& joints, VecU& tau) {
   state_.q = at_.q + e_.head(n);
   state_.v = at_.v + e_.tail(n);
   num_pending_ = 0;
+  // The part: where the strokes put it. At the start every finger touches (the cell places
+  // them under the part), which fixes its pose; later it rides on the planned contacts with
+  // that offset from the plan's pose (in the part's frame).
+  q_est_ = state_.q;
+  v_est_ = state_.v;
+  if (!start_set_) {
+    ContactModes all;
+    all.fill(ContactMode::kStick);
+    closeGaps(q_est_, all);
+    const Vec2 d = rotate(-at_.q[layout::kPhi], Vec2(q_est_[layout::kX] - at_.q[layout::kX],
+                                                      q_est_[layout::kY] - at_.q[layout::kY]));
+    part_offset_ = Eigen::Vector3d(d.x(), d.y(), q_est_[layout::kPhi] - at_.q[layout::kPhi]);
+  } else {
+    const Vec2 d = rotate(at_.q[layout::kPhi], Vec2(part_offset_[0], part_offset_[1]));
+    q_est_[layout::kX] += d.x();
+    q_est_[layout::kY] += d.y();
+    q_est_[layout::kPhi] += part_offset_[2];
+    closeGaps(q_est_, schedule_.modes(entry(step_).knot));
+  }
+  blendStart(t, e_);
   const bool clamped = control(t, entry(step_).knot, e_, Eigen::Vector3d::Zero(), tau);
   applied_ = tau;
   return clamped;
@@ -250,6 +274,9 @@ bool ControlLaw::compute(double t, const VecU& joints, VecU& tau) {
   schedule_.reference(t, at_);
   e_.head(n) = state_.q - at_.q;
   e_.tail(n) = state_.v - at_.v;
+  q_est_ = state_.q;
+  v_est_ = state_.v;
+  blendStart(t, e_);
   const bool clamped = control(t, cur.knot, e_, xi_, tau);
   applied_ = tau;
   if (!clamped) {
@@ -269,29 +296,75 @@ bool ControlLaw::computeFromState(double t, const VecQ& q, const VecQ& v, VecU& 
   VecX e(2 * n);
   e.head(n) = q - at_.q;
   e.tail(n) = v - at_.v;
-  return control(t, schedule_.knotAt(t), e, Eigen::Vector3d::Zero(), tau);
+  q_est_ = q;
+  v_est_ = v;
+  exact_state_ = true;
+  const bool clamped = control(t, schedule_.knotAt(t), e, Eigen::Vector3d::Zero(), tau);
+  exact_state_ = false;
+  return clamped;
+}
+
+void ControlLaw::blendStart(double t, VecX& e) {
+  const int n = schedule_.model().configDim();
+  if (!start_set_) {
+    start_error_ = e;
+    start_error_.tail(n).setZero();
+    start_time_ = t;
+    start_set_ = true;
+  }
+  const double T = schedule_.settings().start_blend;
+  if (T > 0.0) e.noalias() -= std::exp(-(t - start_time_) / T) * start_error_;
 }
 
 bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3d& xi, VecU& tau) {
-  const int nu = schedule_.model().controlDim();
+  const int nu = schedule_.model().controlDim(), m = schedule_.model().numFingers();
   schedule_.reference(t + 0.5 * schedule_.timeStep(), mid_);
   demand_ = mid_.tau;
   demand_.noalias() -= schedule_.gain(knot) * e;
   demand_.noalias() -= schedule_.integralGain(knot) * xi;
-  if (schedule_.contactRows(knot).rows() > 0) {
-    VecU du = demand_ - mid_.tau;
-    keepContacts(knot, e, du);
-    demand_ = mid_.tau + du;
+  const ContactRoles& roles = schedule_.roles(knot);
+  ModelData& data = qp_.data();
+  data.xi_hint = state_.xi_hint;
+  const bool exact = exact_state_;
+  schedule_.model().updateContacts(q_est_, data);
+  const double touch = 10.0 * schedule_.sensing().joints.stroke_noise + 1e-5;
+  ContactModes estimated;
+  estimated.fill(ContactMode::kSeparated);
+  for (int i = 0; i < m; ++i) {
+    if (data.contacts[i].gap > touch) continue;
+    const bool slides =
+        exact ? std::abs(data.T.col(i).dot(v_est_)) > schedule_.settings().estimator_slip_speed
+              : schedule_.partFeedback() && state_.mode[i] == ContactMode::kSlide;
+    estimated[i] = slides ? ContactMode::kSlide : ContactMode::kStick;
   }
+  // Planned sliders break loose once: seen slipping their way (the estimate or the exact
+  // state), or, without the part's pose, after the law has pulled them for breakaway_time.
+  const double dt = schedule_.timeStep();
+  for (int i = 0; i < m; ++i) {
+    const int sgn = slipSign(roles[i]);
+    if (sgn == 0 || estimated[i] == ContactMode::kSeparated) {
+      loose_[i] = false;
+      pulled_[i] = 0.0;
+      continue;
+    }
+    const double slip = sgn * data.T.col(i).dot(v_est_);
+    const double seen = schedule_.settings().estimator_slip_speed;
+    if (exact || schedule_.partFeedback())
+      loose_[i] = loose_[i] || slip > (exact ? 0.1 * seen : seen) ||
+                  (!exact && state_.mode[i] == ContactMode::kSlide && slip > 0.0);
+    else
+      loose_[i] = loose_[i] || pulled_[i] >= schedule_.settings().breakaway_time;
+    if (!loose_[i]) pulled_[i] += dt;
+  }
+  qp_.solve(q_est_, v_est_, roles, loose_, estimated, demand_, tau);
   const Cell& c = schedule_.model().cell();
-  tau.resize(nu);
   bool clamped = false;
   for (int j = 0; j < nu; ++j) {
     const double limit =
         j == layout::kTauTheta ? c.base.torque_limit : c.fingers[j - 1].force_limit;
-    tau[j] = std::clamp(demand_[j], -limit, limit);
-    clamped = clamped || tau[j] != demand_[j];
+    clamped = clamped || std::abs(tau[j]) >= limit * (1.0 - 1e-9) || std::abs(demand_[j]) > limit;
   }
+  demand_ = tau;
   return clamped;
 }
 

@@ -88,7 +88,9 @@ FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory t
     const double t = t0_ + k * knot_span;
     reference(t, at);
     reference(t + 0.5 * h_, mid);
-    modes_.push_back(plannedModes(t, ws));
+    ContactRoles roles;
+    modes_.push_back(plannedModes(t, ws, roles));
+    roles_.push_back(roles);
     ModeLinearization lin = dynamics.linearize(at.q, at.v, mid.tau, modes_.back());
     F_.push_back(lin.F);
     const MatrixXd A2 = lin.A * lin.A;
@@ -116,7 +118,8 @@ void FeedbackSchedule::reference(double t, ReferenceSample& out) const {
   out.tau = hold_tau_;
 }
 
-ContactModes FeedbackSchedule::plannedModes(double t, SimulatorWorkspace& ws) const {
+ContactModes FeedbackSchedule::plannedModes(double t, SimulatorWorkspace& ws,
+                                           ContactRoles& roles) const {
   const int m = model_.numFingers();
   const SimulatorSettings& sim = simulator_.settings();
   ReferenceSample a, mid;
@@ -129,28 +132,38 @@ ContactModes FeedbackSchedule::plannedModes(double t, SimulatorWorkspace& ws) co
   ModelData& data = ws.data;
   data.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
   model_.updateContacts(a.q, data);
+  VecC slip = VecC::Zero(m);
   for (int i = 0; i < m; ++i) {
+    slip[i] = data.T.col(i).dot(a.v);
     if (!(data.contacts[i].gap <= settings_.touch_gap)) continue;
-    const double slip = data.T.col(i).dot(a.v);
-    const bool slides = std::abs(slip) > sim.slip_tolerance;
+    const bool slides = std::abs(slip[i]) > sim.slip_tolerance;
     state.mode[i] = slides ? ContactMode::kSlide : ContactMode::kStick;
-    state.slip[i] = slip;
-    state.friction_guess[i] = !slides      ? FrictionMode::kStick
-                              : slip > 0.0 ? FrictionMode::kSlidePositive
-                                           : FrictionMode::kSlideNegative;
+    state.slip[i] = slip[i];
+    state.friction_guess[i] = !slides        ? FrictionMode::kStick
+                              : slip[i] > 0.0 ? FrictionMode::kSlidePositive
+                                              : FrictionMode::kSlideNegative;
   }
   StepReport report;
   simulator_.step(state, mid.tau, ws, &report);
-  // A contact the reference loads too lightly to rely on is no constraint of the mode (a
-  // gain that pulled on it would open it), and one without friction slides whatever its
-  // slip (the simulator labels a contact at rest as sticking).
+  // The roles: the plan's own, else what that step did (a contact it presses sticks or
+  // slides the way the reference slips it).
   const double min_force =
       settings_.min_normal_force * model_.cell().object.mass * model_.cell().gravity;
+  roles = a.roles;
+  if (!planned(roles)) {
+    roles.fill(ContactRole::kUnplanned);
+    for (int i = 0; i < m; ++i) roles[i] = roleOf(report.contacts[i], min_force);
+  }
+  // The LQR's mode: a contact the reference loads too lightly to rely on is no constraint of
+  // it (a gain that pulled on it would open it), and one without friction slides whatever
+  // its slip (the simulator labels a contact at rest as sticking).
   const bool friction = model_.cell().friction.mu_static > 0.0;
   ContactModes modes;
   modes.fill(ContactMode::kSeparated);
   for (int i = 0; i < m; ++i) {
-    ContactMode mode = report.contacts[i].mode;
+    ContactMode mode = slipSign(roles[i]) != 0          ? ContactMode::kSlide
+                       : roles[i] == ContactRole::kStick ? ContactMode::kStick
+                                                         : ContactMode::kSeparated;
     if (!(report.contacts[i].f_n >= min_force)) mode = ContactMode::kSeparated;
     if (mode == ContactMode::kStick && !friction) mode = ContactMode::kSlide;
     modes[i] = mode;

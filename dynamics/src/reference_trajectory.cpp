@@ -38,7 +38,8 @@ void ReferenceTrajectory::addKnot(double t, const VecQ& q, const VecQ& v) {
 }
 
 void ReferenceTrajectory::addInputPiece(double t_begin, double duration, const VecU& tau,
-                                        const VecU& tau_end, Phase phase) {
+                                        const VecU& tau_end, Phase phase,
+                                        const ContactRoles& roles) {
   const std::string where = "reference input piece " + std::to_string(piece_start_.size());
   if (!std::isfinite(t_begin) || !std::isfinite(duration) || !(duration > 0.0))
     throw InputError(where + ": duration must be positive and finite");
@@ -60,6 +61,7 @@ void ReferenceTrajectory::addInputPiece(double t_begin, double duration, const V
   tau_end_.push_back(tau_end.size() == 0 ? tau : tau_end);
   held_.push_back(tau_end.size() == 0);
   phase_.push_back(phase);
+  roles_.push_back(roles);
 }
 
 void ReferenceTrajectory::sample(double t, ReferenceSample& out) const {
@@ -89,6 +91,7 @@ void ReferenceTrajectory::sample(double t, ReferenceSample& out) const {
   else
     out.tau = (1.0 - s) * tau_begin_[j] + s * tau_end_[j];
   out.phase = phase_[j];
+  out.roles = roles_[j];
 }
 
 }  // namespace rbsf

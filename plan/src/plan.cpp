@@ -78,7 +78,7 @@ Phase majorityPhase(const PhaseCounts& steps) {
 
 std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ& q0,
                                          std::vector<PlanSegment>& segments, int sample_steps,
-                                         std::vector<SimState>* ends) {
+                                         std::vector<SimState>* ends, double min_force) {
   const int m = simulator.model().numFingers();
   const SimState start(q0, VecQ::Zero(q0.size()));
   SimState state = start;
@@ -96,17 +96,23 @@ std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ&
   }
   HeldInputs inputs(steps, taus);
   PhaseCounts count{};
+  RoleCounts roles{};
   rollout(simulator, state, inputs.totalSteps(), ws, inputs,
           [&](const SimState& now, const StepReport& report, const VecU& tau, long n) {
             const Phase ph = report.phase == Phase::kUnsupported ? Phase::kU : report.phase;
             ++count[static_cast<int>(ph)];
+            for (int i = 0; i < m; ++i)
+              ++roles[i][static_cast<int>(roleOf(report.contacts[i], min_force))];
             // t = 0: the start at rest, with the first step's tau, forces and phase.
             if (n == 0) record(start, tau, report, ph);
             const bool end = inputs.endsSegment(n);
             if ((n + 1) % sample_steps == 0 || end) record(now, tau, report, ph);
             if (end) {
-              segments[inputs.segment()].phase = majorityPhase(count);
+              PlanSegment& seg = segments[inputs.segment()];
+              seg.phase = majorityPhase(count);
+              if (!planned(seg.contacts)) seg.contacts = majorityRoles(roles, m);
               count.fill(0);
+              roles = RoleCounts{};
               if (ends) ends->push_back(now);
             }
             return true;
@@ -159,6 +165,8 @@ std::string planJsonText(const Plan& plan, const PlanFileOptions& options) {
                 {"steps", s.steps},
                 {"tau", vec(s.tau)}};
     if (s.tau_end.size() > 0) seg["tau_end"] = vec(s.tau_end);
+    if (planned(s.contacts))
+      seg["contacts"] = rolesText(s.contacts, static_cast<int>(s.tau.size()) - 1);
     segs.push_back(std::move(seg));
   }
   json samples = json::array();
@@ -333,6 +341,12 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
         seg.tau_end = readVec<VecU>(s.at("tau_end"), path + ": segments[].tau_end");
         if (seg.tau_end.size() != n - 3)
           throw InputError(path + ": segments[].tau_end needs m + 1 values");
+      }
+      if (s.contains("contacts")) {
+        if (!s.at("contacts").is_string())
+          throw InputError(path + ": segments[].contacts must be a string");
+        seg.contacts =
+            parseRoles(s.at("contacts").get<std::string>(), n - 4, path + ": segments[].contacts");
       }
       plan.segments.push_back(std::move(seg));
     }

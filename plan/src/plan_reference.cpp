@@ -12,7 +12,7 @@ ReferenceTrajectory makeReference(const Plan& plan) {
     if (ref.numKnots() == 0 || s.t > ref.endTime()) ref.addKnot(s.t, s.q, s.v);
   double t = 0.0;
   for (const PlanSegment& seg : plan.segments) {
-    ref.addInputPiece(t, seg.duration, seg.tau, seg.tau_end, seg.phase);
+    ref.addInputPiece(t, seg.duration, seg.tau, seg.tau_end, seg.phase, seg.contacts);
     t += seg.duration;
   }
   return ref;

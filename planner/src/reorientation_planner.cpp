@@ -1,5 +1,7 @@
 #include "rbsf/planner/reorientation_planner.h"
 
+#include "rbsf/dynamics/feedback_schedule.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -208,7 +210,10 @@ bool ReorientationPlanner::makePlan(const Problem& problem, const PlannerSetup& 
     if (seg.steps > 0) plan.segments.push_back(std::move(seg));
   }
   std::vector<SimState> ends;
-  plan.samples = simulateSegments(simulator_, q0, plan.segments, s.sample_steps, &ends);
+  // Contacts pressed by less than the law's min_normal_force share of the weight are free.
+  const Cell& cell = model_.cell();
+  const double light = FeedbackSettings{}.min_normal_force * cell.object.mass * cell.gravity;
+  plan.samples = simulateSegments(simulator_, q0, plan.segments, s.sample_steps, &ends, light);
   // The re-simulation against the planner's own states at the segment ends.
   std::size_t e = 0;
   for (std::size_t k = 0; k < pc.getControlCount() && e < ends.size(); ++k) {

@@ -296,8 +296,12 @@ plan::Plan closedLoopPlan(const RbsfModel& model, const ReferenceTrajectory& ref
       sim, state, steps, ws,
       [&](const SimState& now, long n, VecU& tau) {
         if (n % control_steps == 0) {  // the law once per segment, its input held
-          law.computeFromState(static_cast<double>(n) * h, now.q, now.v, held);
+          const double t = static_cast<double>(n) * h;
+          law.computeFromState(t, now.q, now.v, held);
           plan::PlanSegment seg;
+          ReferenceSample at;
+          reference.sample(t, at);
+          seg.contacts = at.roles;
           seg.steps = static_cast<int>(std::min<long>(control_steps, steps - n));
           seg.duration = seg.steps * h;
           seg.tau = held;

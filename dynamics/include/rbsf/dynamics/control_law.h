@@ -62,6 +62,7 @@
 
 #include <Eigen/Core>
 
+#include "rbsf/dynamics/contact_force_qp.h"
 #include "rbsf/dynamics/feedback_schedule.h"
 #include "rbsf/dynamics/placement.h"
 
@@ -109,6 +110,7 @@ class ControlLaw {
   std::uint64_t droppedSamples() const { return dropped_; }
 
   const FeedbackSchedule& schedule() const { return schedule_; }
+  const ContactForceQp& qpForTest() const { return qp_; }
 
  private:
   /// \brief What the estimator remembers of one control step.
@@ -138,6 +140,18 @@ class ControlLaw {
 
   const FeedbackSchedule& schedule_;
   std::unique_ptr<SimulatorWorkspace> ws_;
+  ContactForceQp qp_;
+  VecQ q_est_, v_est_;
+  bool exact_state_ = false;
+  std::array<bool, kMaxFingers> loose_{};  ///< planned slider i has broken loose
+  std::array<double, kMaxFingers> pulled_{};  ///< how long it has been pulled loose [s]
+  /// \brief The error at the start of the run, blended out (start_blend): the reference is
+  ///        joined where the cell starts, not snapped to.
+  void blendStart(double t, VecX& e);
+  VecX start_error_;
+  Eigen::Vector3d part_offset_ = Eigen::Vector3d::Zero();  ///< joint-only: part vs plan
+  double start_time_ = 0.0;
+  bool start_set_ = false;  ///< control() runs on an exact state (computeFromState)
   SimState state_;  ///< the estimate x_hat with the simulator's contact memory
   VecU applied_;    ///< input commanded over the last period
   std::vector<Entry> ring_;

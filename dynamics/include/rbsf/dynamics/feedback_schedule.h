@@ -64,10 +64,16 @@ namespace rbsf {
 struct FeedbackSettings {
   double gain_period = 0.01;  ///< knot spacing D [s]
   double settle_time = 1.0;   ///< hold at rest after the plan's end [s]
+  /// \brief The law's error from the reference at the start of a run decays with this time
+  ///        constant instead of being corrected at once [s]; 0 corrects it at once.
+  double start_blend = 0.5;
   double horizon_tail = 1.0;  ///< Riccati horizon beyond the last knot [s]
   double touch_gap = 5e-4;    ///< a reference contact within this gap touches [m]
   /// \brief The estimator's model counts a contact sliding only above this slip [m/s].
   double estimator_slip_speed = 5e-3;
+  /// \brief Without the part's pose the law takes a planned slider to have broken loose
+  ///        after pulling it this long [s] (it cannot see the slip).
+  double breakaway_time = 0.05;
   /// \brief A contact is a constraint of the planned mode only when the reference presses
   ///        it with at least this fraction of the part's weight.
   double min_normal_force = 0.02;
@@ -167,15 +173,19 @@ class FeedbackSchedule {
   /// \brief Kalman gains at knot k: joints 2n x (m + 1), part 2n x 3 (empty if not sensed).
   const Eigen::MatrixXd& jointGain(int k) const { return Lj_[k]; }
   const Eigen::MatrixXd& partGain(int k) const { return Lp_[k]; }
-  /// \brief The planned modes of knot k.
+  /// \brief The planned modes of knot k (the LQR's).
   const ContactModes& modes(int k) const { return modes_[k]; }
+  /// \brief The contacts' roles at knot k: the plan's when it states them, else those of
+  ///        the simulator step from the reference (a touching contact sticks or slides the
+  ///        way the reference slips it; an untouched one is lifted).
+  const ContactRoles& roles(int k) const { return roles_[k]; }
 
  private:
   void computeLqr(const std::vector<Eigen::MatrixXd>& tangent);
   void computePd();
   void addContactRows(const ModeLinearization& lin, const ContactModes& modes);
   void computeKalman();
-  ContactModes plannedModes(double t, SimulatorWorkspace& ws) const;
+  ContactModes plannedModes(double t, SimulatorWorkspace& ws, ContactRoles& roles) const;
 
   const RbsfModel& model_;
   Simulator simulator_, estimator_;
@@ -190,6 +200,7 @@ class FeedbackSchedule {
   std::vector<Eigen::MatrixXd> Ad_, Bd_, F_, K_, Ki_, Lj_, Lp_, Gc_, Cx_;
   std::vector<Eigen::VectorXd> c0_;
   std::vector<ContactModes> modes_;
+  std::vector<ContactRoles> roles_;
 };
 
 }  // namespace rbsf

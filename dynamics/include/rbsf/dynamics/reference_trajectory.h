@@ -15,7 +15,8 @@
 ///
 /// Input pieces [t_j, t_j + T_j) in time order, contiguous: tau(t) = tau_j held, or
 /// ramped linearly from tau_j to tau_end_j over the piece (PlanSegment's two forms), with
-/// the piece's planned phase. Outside [front, back] t is clamped: before the start the
+/// the piece's planned phase and, when the plan states them, its contacts' roles
+/// (contact_roles.h). Outside [front, back] t is clamped: before the start the
 /// reference is the first knot and the first tau; after the end the last knot (its
 /// velocity) and the last piece's final tau.
 ///
@@ -24,6 +25,7 @@
 
 #include <vector>
 
+#include "rbsf/dynamics/contact_roles.h"
 #include "rbsf/dynamics/phase.h"
 #include "rbsf/dynamics/types.h"
 
@@ -36,6 +38,7 @@ struct ReferenceSample {
   VecQ v;                   ///< v_ref = d q_ref / dt
   VecU tau;                 ///< feed-forward input, order of state_layout.h
   Phase phase = Phase::kC;  ///< planned phase of the input piece containing t
+  ContactRoles roles{};     ///< its contacts' planned roles (kUnplanned when not stated)
 };
 
 /// \brief Knots of (q, v) and pieces of tau(t); see the file comment for the equations.
@@ -48,10 +51,11 @@ class ReferenceTrajectory {
   /// \brief Append an input piece starting at the end of the previous one (the first at
   ///        `t_begin`; later `t_begin` must equal the previous end within 1e-6 s).
   ///        `tau_end` empty: tau held; otherwise a linear ramp from `tau` to `tau_end`.
+  ///        `roles`: the contacts' planned roles over the piece, when stated.
   /// \throws InputError for a non-positive duration, a gap or overlap, non-finite values
   ///         or sizes that differ from the first piece.
   void addInputPiece(double t_begin, double duration, const VecU& tau, const VecU& tau_end,
-                     Phase phase);
+                     Phase phase, const ContactRoles& roles = ContactRoles{});
 
   /// \brief Fill `out` with the reference at t (clamped to [startTime(), endTime()]).
   ///        Allocation-free after `out` has once been sized (its vectors are fixed-capacity
@@ -74,6 +78,7 @@ class ReferenceTrajectory {
   std::vector<VecU> tau_begin_, tau_end_;  // tau_end_ == tau_begin_ for held pieces
   std::vector<char> held_;                 // 1: tau_begin_ returned as is
   std::vector<Phase> phase_;
+  std::vector<ContactRoles> roles_;
 };
 
 }  // namespace rbsf

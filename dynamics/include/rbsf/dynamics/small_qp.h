@@ -124,7 +124,7 @@ inline constexpr int kMaxQpVariables = 16;
 /// \brief Largest number of equality rows of a SmallQp.
 inline constexpr int kMaxQpEqualities = 16;
 /// \brief Largest number of inequality rows of a SmallQp.
-inline constexpr int kMaxQpInequalities = 96;
+inline constexpr int kMaxQpInequalities = 112;
 
 /// \brief n-vector (x, g).
 using QpVecN = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxQpVariables, 1>;

@@ -23,7 +23,10 @@
 /// | `segments[]`    | `phase` ("C", "P" or "U": the phase most steps of the segment |
 /// |                 | took in simulation), `duration` [s], `steps`, `tau`; `tau_end` |
 /// |                 | only for a ramp (optimised plans): tau goes linearly from `tau` |
-/// |                 | to `tau_end` over the segment |
+/// |                 | to `tau_end` over the segment; `contacts`: each finger's role |
+/// |                 | over the segment (contact_roles.h: "LS+" = finger 1 lifted, 2 |
+/// |                 | sticking, 3 sliding in +t), the planner's where it states them, |
+/// |                 | else what most of the segment's simulated steps did |
 /// | `samples[]`     | every `sample_steps` steps and at each segment end (optimised |
 /// |                 | plans: the collocation knots): `t`, `q`, `v`, `tau` (held over |
 /// |                 | the step that ends here), `f_n` per contact, `phase` of that step |
@@ -68,6 +71,7 @@
 #include <string_view>
 #include <vector>
 
+#include "rbsf/dynamics/contact_roles.h"
 #include "rbsf/dynamics/phase.h"
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/simulator.h"
@@ -86,6 +90,9 @@ struct PlanSegment {
   ///        from `tau` to `tau_end` (optimised plans; `steps` is then the nominal
   ///        round(duration / h) and `duration` is exact).
   VecU tau_end;
+  /// \brief Each contact's role over the segment (contact_roles.h); kUnplanned until the
+  ///        planner or simulateSegments states it.
+  ContactRoles contacts{};
 };
 
 /// \brief How the optimiser's solve went (plan file key `optimization`).
@@ -152,12 +159,15 @@ using PhaseCounts = std::array<int, 3>;
 ///        to C, then P (the planner's segments, simulateSegments).
 Phase majorityPhase(const PhaseCounts& steps);
 
-/// \brief Simulate `segments` from q0 at rest (fresh SimState), fill their `phase` and
-///        return the samples (every `sample_steps` steps and every segment end).
+/// \brief Simulate `segments` from q0 at rest (fresh SimState), fill their `phase` and,
+///        where the planner did not state them, their `contacts` (the roles most of the
+///        segment's steps gave each contact, contact_roles.h roleOf with `min_force` [N]),
+///        and return the samples (every `sample_steps` steps and every segment end).
 ///        `ends`, when given, receives the SimState at each segment end.
 std::vector<PlanSample> simulateSegments(const Simulator& simulator, const VecQ& q0,
                                          std::vector<PlanSegment>& segments, int sample_steps,
-                                         std::vector<SimState>* ends = nullptr);
+                                         std::vector<SimState>* ends = nullptr,
+                                         double min_force = 0.0);
 
 /// \brief Phase letters of consecutive runs (phase, duration [s]): runs shorter than
 ///        `min_run` dropped, then equal neighbours merged. When every run is short the
