@@ -123,13 +123,24 @@ ContactBalance ContactBalancer::solveWith(const VecQ& q, const VecQ& vdot, const
   model_.massMatrix(q, M);
   const Eigen::VectorXd b = M * vdot + data.bias;  // = u + N lambda
 
-  // Equalities: the object rows.
+  // Equalities: the object rows and, by the plant's rule, no force combination that the
+  // actuators cannot feel (N z = 0: an internal squeeze the least-norm rule leaves at zero).
+  Eigen::MatrixXd Z(nl, 0);
+  if (settings_.least_norm) {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(N, Eigen::ComputeFullV);
+    const auto& sv = svd.singularValues();
+    int rank = 0;
+    while (rank < sv.size() && sv[rank] > 1e-9 * sv[0]) ++rank;
+    Z = svd.matrixV().rightCols(nl - rank);
+  }
   const Eigen::MatrixXd A_eq = [&] {
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(layout::kObjectDim, nx);
-    A.leftCols(nl) = N.topRows(layout::kObjectDim);
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(layout::kObjectDim + Z.cols(), nx);
+    A.topLeftCorner(layout::kObjectDim, nl) = N.topRows(layout::kObjectDim);
+    A.bottomLeftCorner(Z.cols(), nl) = Z.transpose();
     return A;
   }();
-  const Eigen::VectorXd b_eq = b.head(layout::kObjectDim);
+  Eigen::VectorXd b_eq = Eigen::VectorXd::Zero(A_eq.rows());
+  b_eq.head(layout::kObjectDim) = b.head(layout::kObjectDim);
 
   // Inequalities G x >= h: margins, then the input limits on both sides.
   const int n_margin = nt + 2 * ns;

@@ -31,24 +31,57 @@ ContactForceQp::ContactForceQp(const RbsfModel& model, const ContactForceSetting
   x_ = QpVecN::Zero(layout_.size());
 }
 
-void ContactForceQp::predict(const VecQ& q, const VecQ& v, const ContactRoles& roles,
-                             const LooseFlags& loose, const ContactModes& estimated) {
+void ContactForceQp::predict(const VecQ& q, const VecQ& v, const ContactTick& tick,
+                             const VecU& demand) {
+  const ContactRoles& roles = tick.roles;
+  const ContactModes& estimated = tick.estimated;
   const RbsfModel& model = model_;
-  const int m = model.numFingers(), n = model.configDim(), nu = model.controlDim();
-  const double mu_k = model.cell().friction.mu_kinetic;
+  const int m = model.numFingers(), nu = model.controlDim();
+  const double mu_s = model.cell().friction.mu_static;
   model.updateContacts(q, data_);
   model.velocityProducts(q, v, data_);
   model.bias(q, v, data_.bias);
-
   for (int i = 0; i < m; ++i) {
     const ContactRole r = roles[i];
+    saturated_[i] = 0;
     if (estimated[i] == ContactMode::kSeparated || r == ContactRole::kLifted)
       mode_[i] = ContactMode::kSeparated;  // a lifted finger still touching lets go (its row)
     else if (slipSign(r) != 0)
-      mode_[i] = loose[i] ? ContactMode::kSlide : ContactMode::kStick;
+      mode_[i] = tick.loose[i] ? ContactMode::kSlide : ContactMode::kStick;
     else
       mode_[i] = estimated[i];  // a tip slipping where it should stick: as it is
   }
+  // A contact the plan does not rely on takes the force the plant gives it: where the demand
+  // would push its least-norm force out of its cone, the plant holds it at the cone's edge
+  // (its contact problem's solution), so the prediction does too.
+  assemble(q, v, tick);
+  for (int pass = 0; pass < m; ++pass) {
+    int worst = -1;
+    double excess = 0.0;
+    for (int i = 0; i < m; ++i) {
+      const bool free = roles[i] == ContactRole::kFree || roles[i] == ContactRole::kUnplanned;
+      if (!free || mode_[i] != ContactMode::kStick) continue;
+      const double fn = L_.row(normal_row_[i]).head(nu).dot(demand) + L_(normal_row_[i], nu);
+      const double ft = L_.row(tangent_row_[i]).head(nu).dot(demand) + L_(tangent_row_[i], nu);
+      if (std::abs(ft) - mu_s * std::max(fn, 0.0) > excess) {
+        excess = std::abs(ft) - mu_s * std::max(fn, 0.0);
+        worst = i;
+      }
+    }
+    if (worst < 0) break;
+    const double ft =
+        L_.row(tangent_row_[worst]).head(nu).dot(demand) + L_(tangent_row_[worst], nu);
+    mode_[worst] = ContactMode::kSlide;
+    saturated_[worst] = ft > 0.0 ? 1 : -1;
+    assemble(q, v, tick);
+  }
+}
+
+void ContactForceQp::assemble(const VecQ& q, const VecQ& v, const ContactTick& tick) {
+  const ContactRoles& roles = tick.roles;
+  const RbsfModel& model = model_;
+  const int m = model.numFingers(), n = model.configDim(), nu = model.controlDim();
+  const double mu_k = model.cell().friction.mu_kinetic, mu_s = model.cell().friction.mu_static;
   int k = 0;
   for (int i = 0; i < m; ++i) normal_row_[i] = mode_[i] == ContactMode::kSeparated ? -1 : k++;
   for (int i = 0; i < m; ++i) tangent_row_[i] = mode_[i] == ContactMode::kStick ? k++ : -1;
@@ -61,7 +94,9 @@ void ContactForceQp::predict(const VecQ& q, const VecQ& v, const ContactRoles& r
       W_.col(normal_row_[i]) = data_.G1.col(i);
       N_.col(normal_row_[i]) = data_.G1.col(i);
       hw_[normal_row_[i]] = data_.h_n[i];
-      if (mode_[i] == ContactMode::kSlide) {
+      if (saturated_[i] != 0) {
+        N_.col(normal_row_[i]) += mu_s * saturated_[i] * data_.T.col(i);  // at the edge
+      } else if (mode_[i] == ContactMode::kSlide) {
         // Kinetic friction against the slip: the estimate's, or the planned one from rest.
         const double slip = data_.T.col(i).dot(v);
         const double s = std::abs(slip) > kNoSlip ? (slip > 0.0 ? 1.0 : -1.0) : slipSign(roles[i]);
@@ -109,8 +144,9 @@ void ContactForceQp::predict(const VecQ& q, const VecQ& v, const ContactRoles& r
   B_.noalias() += MinvN_ * L_.leftCols(nu);
 }
 
-void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactRoles& roles,
+void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactTick& tick,
                              const VecU& demand) {
+  const ContactRoles& roles = tick.roles;
   const RbsfModel& model = model_;
   const Cell& cell = model.cell();
   const int m = model.numFingers(), n = model.configDim(), nu = model.controlDim();
@@ -119,26 +155,27 @@ void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactRoles& r
   const QpLayout& lay = layout_;
 
   // Rows: at most two per condition, three conditions per contact, the input box and the
-  // bounds of rho and sigma.
-  qp_.resize(lay.size(), 0, 6 * m + 2 * nu + 3);
+  // bounds of rho, sigma and pi.
+  qp_.resize(lay.size(), 0, 6 * m + 2 * nu + 4);
   QpMatIN& A = qp_.A;
   QpVecI& b = qp_.b;
 
   // Cost: the motion's generalized-force error per part weight, then rho and sigma.
   model.massMatrix(q, M_);
-  MatQQ& SB = SB_;
-  SB.resize(n, nu);
+  SB_.resize(n, nu);
   for (int c = 0; c < n; ++c) {
     const bool moment = c == layout::kPhi || c == layout::kTheta;
-    SB.row(c) = (M_(c, c) / (weight_ * (moment ? kMomentLever : 1.0))) * B_.row(c);
+    SB_.row(c) = (M_(c, c) / (weight_ * (moment ? kMomentLever : 1.0))) * B_.row(c);
   }
-  qp_.H.topLeftCorner(nu, nu).noalias() = SB.transpose() * SB;
+  qp_.H.topLeftCorner(nu, nu).noalias() = SB_.transpose() * SB_;
   qp_.H.topLeftCorner(nu, nu).diagonal().array() += s.input_regularization / (weight_ * weight_);
   qp_.g.head(nu).noalias() = -qp_.H.topLeftCorner(nu, nu) * demand;
   qp_.H(lay.margin(), lay.margin()) = 1e-3;
   qp_.g[lay.margin()] = -s.margin_reward;
   qp_.H(lay.violation(), lay.violation()) = 1.0;
   qp_.g[lay.violation()] = s.violation_penalty;
+  qp_.H(lay.shortfall(), lay.shortfall()) = 1.0;
+  qp_.g[lay.shortfall()] = s.shortfall_penalty;
 
   // The worst first-order change of a row from the cell's stated uncertainty.
   const Uncertainty& un = cell.uncertainty;
@@ -146,9 +183,9 @@ void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactRoles& r
   const double dmoment = weight_ * un.com * (std::abs(std::cos(phi)) + std::abs(std::sin(phi)));
   int r = 0;
   // Row c . lambda + constant >= -sigma W and, when `margin`, >= R + rho W.
-  auto forceRow = [&](const VecR& c, double constant, bool margin) {
+  auto forceRow = [&](const VecR& c, double constant, bool margin, int slack) {
     A.row(r).head(nu).noalias() = c.transpose() * L_.leftCols(nu);
-    A(r, lay.violation()) = weight_;
+    A(r, slack) = weight_;
     b[r] = -(c.dot(L_.col(nu)) + constant);
     ++r;
     if (!margin) return;
@@ -156,6 +193,7 @@ void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactRoles& r
                     std::abs(c.dot(L_.col(nu + 3))) * dmoment;
     for (int j = 0; j < nu; ++j)
       robust += std::abs(c.dot(L_.col(j))) * std::abs(demand[j]) * un.actuator_gain;
+    robust = std::min(robust, s.robust_cap * weight_);
     A.row(r).head(nu) = A.row(r - 1).head(nu);
     A(r, lay.margin()) = -weight_;
     b[r] = b[r - 1] + robust;
@@ -182,22 +220,24 @@ void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactRoles& r
     const bool relied = role != ContactRole::kFree && role != ContactRole::kUnplanned;
     c.setZero();
     c[normal_row_[i]] = 1.0;
-    forceRow(c, relied ? -s.normal_floor * weight_ : 0.0, relied);
+    forceRow(c, relied ? -s.normal_floor * weight_ : 0.0, relied, lay.violation());
     if (mode_[i] == ContactMode::kStick && sgn == 0) {
       for (const double side : {1.0, -1.0}) {
         c.setZero();
         c[normal_row_[i]] = (relied ? s.friction_use : 1.0) * mu_s;
         c[tangent_row_[i]] = side;
-        forceRow(c, 0.0, relied);
+        forceRow(c, 0.0, relied, lay.violation());
       }
     } else if (mode_[i] == ContactMode::kStick) {
       c.setZero();
       c[normal_row_[i]] = -s.breakaway * mu_s;
       c[tangent_row_[i]] = -sgn;
-      forceRow(c, 0.0, true);
+      forceRow(c, -s.pull_margin * weight_, false, lay.shortfall());
     } else if (sgn != 0) {
       const double slip = sgn * data_.T.col(i).dot(v);
-      motionRow(sgn * data_.T.col(i), sgn * data_.h_t[i] - s.slip_gain * (s.slip_speed - slip));
+      const double floor = tick.slip_floor.size() > i ? tick.slip_floor[i] : s.slip_speed;
+      if (floor > 0.0)
+        motionRow(sgn * data_.T.col(i), sgn * data_.h_t[i] - s.slip_gain * (floor - slip));
     }
   }
   for (int j = 0; j < nu; ++j) {
@@ -206,27 +246,28 @@ void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactRoles& r
     A(r, j) = -1.0;
     b[r++] = -inputLimit(cell, j);
   }
-  A(r, lay.margin()) = 1.0;
-  b[r++] = -1.0;
   A(r, lay.margin()) = -1.0;
   b[r++] = -s.margin_cap;
   A(r, lay.violation()) = 1.0;
+  b[r++] = 0.0;
+  A(r, lay.shortfall()) = 1.0;
   b[r++] = 0.0;
   // The rows left over stay 0 x >= -1: never active.
   for (int j = r; j < qp_.numInequalities(); ++j) b[j] = -1.0;
 }
 
-bool ContactForceQp::solve(const VecQ& q, const VecQ& v, const ContactRoles& roles,
-                           const LooseFlags& loose, const ContactModes& estimated,
+bool ContactForceQp::solve(const VecQ& q, const VecQ& v, const ContactTick& tick,
                            const VecU& demand, VecU& tau) {
   const int m = model_.numFingers(), nu = model_.controlDim();
-  predict(q, v, roles, loose, estimated);
-  buildQp(q, v, roles, demand);
+  const ContactRoles& roles = tick.roles;
+  predict(q, v, tick, demand);
+  buildQp(q, v, tick, demand);
   qp_.solve();
   x_ = qp_.x;
   tau.resize(nu);
   const Cell& cell = model_.cell();
-  for (int j = 0; j < nu; ++j) tau[j] = std::clamp(x_[j], -inputLimit(cell, j), inputLimit(cell, j));
+  for (int j = 0; j < nu; ++j)
+    tau[j] = std::clamp(x_[j], -inputLimit(cell, j), inputLimit(cell, j));
 
   fn_.setZero(m);
   ft_.setZero(m);

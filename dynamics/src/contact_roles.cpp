@@ -9,12 +9,24 @@ std::string rolesText(const ContactRoles& roles, int m) {
   std::string s;
   for (int i = 0; i < m; ++i) {
     switch (roles[i]) {
-      case ContactRole::kStick: s += 'S'; break;
-      case ContactRole::kSlidePositive: s += '+'; break;
-      case ContactRole::kSlideNegative: s += '-'; break;
-      case ContactRole::kLifted: s += 'L'; break;
-      case ContactRole::kFree: s += 'F'; break;
-      case ContactRole::kUnplanned: s += '?'; break;
+      case ContactRole::kStick:
+        s += 'S';
+        break;
+      case ContactRole::kSlidePositive:
+        s += '+';
+        break;
+      case ContactRole::kSlideNegative:
+        s += '-';
+        break;
+      case ContactRole::kLifted:
+        s += 'L';
+        break;
+      case ContactRole::kFree:
+        s += 'F';
+        break;
+      case ContactRole::kUnplanned:
+        s += '?';
+        break;
     }
   }
   return s;
@@ -24,18 +36,29 @@ ContactRoles parseRoles(std::string_view text, int m, const std::string& what) {
   ContactRoles roles{};
   if (static_cast<int>(text.size()) != m)
     throw InputError(what + ": expected " + std::to_string(m) +
-                     " contact roles (one of S, +, -, L, F per finger), got \"" + std::string(text) +
-                     "\"");
+                     " contact roles (one of S, +, -, L, F per finger), got \"" +
+                     std::string(text) + "\"");
   for (int i = 0; i < m; ++i) {
     switch (text[static_cast<std::size_t>(i)]) {
-      case 'S': roles[i] = ContactRole::kStick; break;
-      case '+': roles[i] = ContactRole::kSlidePositive; break;
-      case '-': roles[i] = ContactRole::kSlideNegative; break;
-      case 'L': roles[i] = ContactRole::kLifted; break;
-      case 'F': roles[i] = ContactRole::kFree; break;
+      case 'S':
+        roles[i] = ContactRole::kStick;
+        break;
+      case '+':
+        roles[i] = ContactRole::kSlidePositive;
+        break;
+      case '-':
+        roles[i] = ContactRole::kSlideNegative;
+        break;
+      case 'L':
+        roles[i] = ContactRole::kLifted;
+        break;
+      case 'F':
+        roles[i] = ContactRole::kFree;
+        break;
       default:
-        throw InputError(what + ": contact role '" + std::string(1, text[static_cast<std::size_t>(i)]) +
-                         "' of finger " + std::to_string(i + 1) + " is not one of S, +, -, L, F");
+        throw InputError(what + ": contact role '" +
+                         std::string(1, text[static_cast<std::size_t>(i)]) + "' of finger " +
+                         std::to_string(i + 1) + " is not one of S, +, -, L, F");
     }
   }
   return roles;

@@ -61,6 +61,7 @@ ControlLaw::ControlLaw(const FeedbackSchedule& schedule)
   }
   at_.q = VecQ::Zero(n);
   at_.v = VecQ::Zero(n);
+  tick_.slip_floor = VecC::Zero(schedule.model().numFingers());
   at_.tau = VecU::Zero(nu);
   mid_ = at_;
 }
@@ -68,7 +69,7 @@ ControlLaw::ControlLaw(const FeedbackSchedule& schedule)
 void ControlLaw::reset() {
   step_ = -1;
   start_set_ = false;
-  loose_.fill(false);
+  tick_.loose.fill(false);
   pulled_.fill(0.0);
   num_pending_ = 0;
   dropped_ = 0;
@@ -219,7 +220,7 @@ bool ControlLaw::computeJointOnly(double t, const VecU& joints, VecU& tau) {
     all.fill(ContactMode::kStick);
     closeGaps(q_est_, all);
     const Vec2 d = rotate(-at_.q[layout::kPhi], Vec2(q_est_[layout::kX] - at_.q[layout::kX],
-                                                      q_est_[layout::kY] - at_.q[layout::kY]));
+                                                     q_est_[layout::kY] - at_.q[layout::kY]));
     part_offset_ = Eigen::Vector3d(d.x(), d.y(), q_est_[layout::kPhi] - at_.q[layout::kPhi]);
   } else {
     const Vec2 d = rotate(at_.q[layout::kPhi], Vec2(part_offset_[0], part_offset_[1]));
@@ -227,6 +228,9 @@ bool ControlLaw::computeJointOnly(double t, const VecU& joints, VecU& tau) {
     q_est_[layout::kY] += d.y();
     q_est_[layout::kPhi] += part_offset_[2];
     closeGaps(q_est_, schedule_.modes(entry(step_).knot));
+    const Vec2 o = rotate(-at_.q[layout::kPhi], Vec2(q_est_[layout::kX] - at_.q[layout::kX],
+                                                     q_est_[layout::kY] - at_.q[layout::kY]));
+    part_offset_ = Eigen::Vector3d(o.x(), o.y(), q_est_[layout::kPhi] - at_.q[layout::kPhi]);
   }
   blendStart(t, e_);
   const bool clamped = control(t, entry(step_).knot, e_, Eigen::Vector3d::Zero(), tau);
@@ -322,41 +326,59 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
   demand_ = mid_.tau;
   demand_.noalias() -= schedule_.gain(knot) * e;
   demand_.noalias() -= schedule_.integralGain(knot) * xi;
-  const ContactRoles& roles = schedule_.roles(knot);
+  // The tick's contacts: the plan's roles; touching where the estimate's gap is closed
+  // (within what the strokes' noise can tell), sliding where the estimator's contact memory
+  // slides them or, on an exact state, where they slip.
+  ContactTick& tick = tick_;
+  tick.roles = schedule_.roles(knot);
   ModelData& data = qp_.data();
   data.xi_hint = state_.xi_hint;
   const bool exact = exact_state_;
+  const FeedbackSettings& fs = schedule_.settings();
   schedule_.model().updateContacts(q_est_, data);
   const double touch = 10.0 * schedule_.sensing().joints.stroke_noise + 1e-5;
-  ContactModes estimated;
-  estimated.fill(ContactMode::kSeparated);
+  tick.estimated.fill(ContactMode::kSeparated);
   for (int i = 0; i < m; ++i) {
     if (data.contacts[i].gap > touch) continue;
-    const bool slides =
-        exact ? std::abs(data.T.col(i).dot(v_est_)) > schedule_.settings().estimator_slip_speed
-              : schedule_.partFeedback() && state_.mode[i] == ContactMode::kSlide;
-    estimated[i] = slides ? ContactMode::kSlide : ContactMode::kStick;
+    const bool slides = exact ? std::abs(data.T.col(i).dot(v_est_)) > fs.estimator_slip_speed
+                              : schedule_.partFeedback() && state_.mode[i] == ContactMode::kSlide;
+    tick.estimated[i] = slides ? ContactMode::kSlide : ContactMode::kStick;
   }
   // Planned sliders break loose once: seen slipping their way (the estimate or the exact
   // state), or, without the part's pose, after the law has pulled them for breakaway_time.
+  // A loose slider keeps at least the slip floor, or the reference's own slip where slower.
   const double dt = schedule_.timeStep();
+  const double floor = qp_.settings().slip_speed;
   for (int i = 0; i < m; ++i) {
-    const int sgn = slipSign(roles[i]);
-    if (sgn == 0 || estimated[i] == ContactMode::kSeparated) {
-      loose_[i] = false;
+    const int sgn = slipSign(tick.roles[i]);
+    tick.slip_floor[i] = 0.0;
+    if (sgn == 0 || tick.estimated[i] == ContactMode::kSeparated) {
+      tick.loose[i] = false;
       pulled_[i] = 0.0;
       continue;
     }
+    // A slider seen stuck again (stopped by a transient) is pulled loose again.
     const double slip = sgn * data.T.col(i).dot(v_est_);
-    const double seen = schedule_.settings().estimator_slip_speed;
-    if (exact || schedule_.partFeedback())
-      loose_[i] = loose_[i] || slip > (exact ? 0.1 * seen : seen) ||
-                  (!exact && state_.mode[i] == ContactMode::kSlide && slip > 0.0);
-    else
-      loose_[i] = loose_[i] || pulled_[i] >= schedule_.settings().breakaway_time;
-    if (!loose_[i]) pulled_[i] += dt;
+    // On an exact state the simulator's own tolerance tells; an estimate needs a slip it can
+    // tell from its noise.
+    const double seen =
+        exact ? 10.0 * schedule_.simulator().settings().slip_tolerance : fs.estimator_slip_speed;
+    if (exact || schedule_.partFeedback()) {
+      const bool slipping =
+          slip > seen || (!exact && state_.mode[i] == ContactMode::kSlide && slip > 0.0);
+      const bool stuck =
+          exact ? std::abs(slip) < 0.1 * seen : state_.mode[i] == ContactMode::kStick;
+      tick.loose[i] = slipping || (tick.loose[i] && !stuck);
+    } else {
+      // Without the part's pose the slip cannot be seen: loose once pulled long enough.
+      tick.loose[i] = tick.loose[i] || pulled_[i] >= fs.breakaway_time;
+    }
+    if (!tick.loose[i]) pulled_[i] += dt;
+    // The floor holds where the reference itself slides this way at least that fast.
+    tick.slip_floor[i] = sgn * data.T.col(i).dot(at_.v) >= floor ? floor : 0.0;
   }
-  qp_.solve(q_est_, v_est_, roles, loose_, estimated, demand_, tau);
+  qp_.solve(q_est_, v_est_, tick, demand_, tau);
+
   const Cell& c = schedule_.model().cell();
   bool clamped = false;
   for (int j = 0; j < nu; ++j) {

@@ -119,7 +119,7 @@ void FeedbackSchedule::reference(double t, ReferenceSample& out) const {
 }
 
 ContactModes FeedbackSchedule::plannedModes(double t, SimulatorWorkspace& ws,
-                                           ContactRoles& roles) const {
+                                            ContactRoles& roles) const {
   const int m = model_.numFingers();
   const SimulatorSettings& sim = simulator_.settings();
   ReferenceSample a, mid;
@@ -139,7 +139,7 @@ ContactModes FeedbackSchedule::plannedModes(double t, SimulatorWorkspace& ws,
     const bool slides = std::abs(slip[i]) > sim.slip_tolerance;
     state.mode[i] = slides ? ContactMode::kSlide : ContactMode::kStick;
     state.slip[i] = slip[i];
-    state.friction_guess[i] = !slides        ? FrictionMode::kStick
+    state.friction_guess[i] = !slides         ? FrictionMode::kStick
                               : slip[i] > 0.0 ? FrictionMode::kSlidePositive
                                               : FrictionMode::kSlideNegative;
   }
@@ -161,7 +161,7 @@ ContactModes FeedbackSchedule::plannedModes(double t, SimulatorWorkspace& ws,
   ContactModes modes;
   modes.fill(ContactMode::kSeparated);
   for (int i = 0; i < m; ++i) {
-    ContactMode mode = slipSign(roles[i]) != 0          ? ContactMode::kSlide
+    ContactMode mode = slipSign(roles[i]) != 0           ? ContactMode::kSlide
                        : roles[i] == ContactRole::kStick ? ContactMode::kStick
                                                          : ContactMode::kSeparated;
     if (!(report.contacts[i].f_n >= min_force)) mode = ContactMode::kSeparated;

@@ -223,15 +223,18 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     if (s.set.phase() == Phase::kU) tree.sliding[meetKey(s)].push_back(id);
     if (s.set.phase() == Phase::kP) tree.pivots[pivotKey(s, 0, 0, s.set.pivot())].push_back(id);
   };
-  // Roots: every valid set of the placement rule's fingers (all sliding, one or all sticking)
-  // at the start, and at the goal seen from each candidate base angle.
+  // Roots: every valid set of the placement rule's fingers at the start, and at the goal seen
+  // from each candidate base angle.
   auto seed = [&](int t, const JigPose& pose) {
     const ContactSet placed = geometry_.placedSet(pose);
-    std::vector<std::uint32_t> sticking = {0u, placed.touching};
-    for (int k = 0; k < m; ++k)
-      if (placed.touches(k)) sticking.push_back(1u << k);
-    for (std::uint32_t st : sticking) {
-      const ContactSet set{placed.touching, st};
+    // At rest any of the placed fingers may let go, and any of the others stick.
+    std::vector<ContactSet> sets;
+    for (std::uint32_t touch = placed.touching; touch != 0; touch = (touch - 1) & placed.touching)
+      for (std::uint32_t st = touch;; st = (st - 1) & touch) {
+        sets.push_back(ContactSet{touch, st});
+        if (st == 0) break;
+      }
+    for (const ContactSet& set : sets) {
       SupportStep s;
       if (!anchorFor(pose, set, s.anchor)) continue;
       const Support sup = geometry_.check(pose, set);
@@ -486,14 +489,21 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
       }
     }
     // Switches at this pose: every contact slides, one sticks, all stick; a finger touches
-    // (sliding) or a sliding one lets go.
+    // (sliding, or sticking beside a sticking one) or lets go (a sliding one, or a sticking
+    // one beside another).
     if (s.set.sticking != 0) trySwitch(ContactSet{touching, 0u});
     for (int k = 0; k < m; ++k)
       if ((touching >> k) & 1u && s.set.sticking != (1u << k))
         trySwitch(ContactSet{touching, 1u << k});
     if (s.set.sticking != touching) trySwitch(ContactSet{touching, touching});
-    for (int j = 0; j < m; ++j)
-      if (!s.set.sticks(j)) trySwitch(ContactSet{touching ^ (1u << j), s.set.sticking});
+    for (int j = 0; j < m; ++j) {
+      const std::uint32_t bit = 1u << j;
+      if (!s.set.sticks(j)) trySwitch(ContactSet{touching ^ bit, s.set.sticking});
+      if (s.set.sticks(j) && s.set.stickingCount() > 1)
+        trySwitch(ContactSet{touching & ~bit, s.set.sticking & ~bit});  // a sticking one lets go
+      if (!s.set.touches(j) && s.set.sticking != 0)
+        trySwitch(ContactSet{touching | bit, s.set.sticking | bit});  // placed to stick
+    }
     if (met) return result;
   }
   if (result.message.empty())

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 
 #include "rbsf/dynamics/control_law.h"
@@ -46,7 +47,7 @@ struct Stretch {
   int finger = -1;                      ///< kFinger: the finger that moves
   double from = 0.0, to = 0.0;          ///< kFinger: its strokes
   VecU tau_from, tau_to;                ///< kRamp: the inputs at both ends
-  ContactSet next;                      ///< kRamp: the set after it
+  ContactSet before, next;              ///< kRamp: the sets before and after it
   double duration = 0.0;
   std::size_t first_step = 0, last_step = 0;  ///< SupportRun
 };
@@ -119,7 +120,7 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
   if (timing.settle_time > 0.0) {  // the start at rest under the first set's forces
     Stretch hold;
     hold.kind = Stretch::kRamp;
-    hold.set = hold.next = path.steps.front().set;
+    hold.set = hold.before = hold.next = path.steps.front().set;
     hold.base = path.steps.front().pose;
     hold.tau_from = hold.tau_to = staticTau(hold.base, hold.set);
     hold.duration = timing.settle_time;
@@ -204,6 +205,7 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
       ramp.base = pose;
       ramp.tau_from = staticTau(pose, from);
       ramp.tau_to = staticTau(pose, to);
+      ramp.before = from;
       ramp.next = to;
       ramp.duration = timing.handover_time;
       ramp.first_step = i - 1;
@@ -218,6 +220,49 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
     i = j + 1;
   }
 
+  if (timing.end_rest > 0.0) {  // the end at rest under the last set's forces
+    const SupportStep& last = path.steps.back();
+    Stretch hold;
+    hold.kind = Stretch::kRamp;
+    hold.set = hold.before = hold.next = last.set;
+    hold.base = last.pose;
+    hold.tau_from = hold.tau_to = staticTau(hold.base, hold.set);
+    hold.duration = timing.end_rest;
+    hold.first_step = hold.last_step = path.steps.size() - 1;
+    stretches.push_back(hold);
+  }
+
+  // The contacts' roles over a stretch (contact_roles.h). A run's sliders slide the way its
+  // middle slips them; at rest the set's sticking contacts stick and its sliders, stuck as
+  // every contact at rest is, are not relied on, nor is a finger whose load a hand-over ramps
+  // from or to nothing, and one that moves up alone to join may touch at its end; the others
+  // are lifted.
+  auto rolesOf = [&](const Stretch& r) {
+    ContactRoles roles{};
+    const VecQ q = configuration(r, 0.5);
+    VecQ v = VecQ::Zero(q.size());
+    if (r.kind == Stretch::kRun) v = configuration(r, 0.5 + 1e-4) - configuration(r, 0.5 - 1e-4);
+    data.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
+    model.updateContacts(q, data);
+    for (int f = 0; f < m; ++f) {
+      const bool touching = r.set.touches(f);
+      if (r.kind == Stretch::kFinger && f == r.finger)
+        roles[f] = r.to > r.from ? ContactRole::kFree : ContactRole::kLifted;
+      else if (r.kind == Stretch::kRamp && touching && !(r.before.touches(f) && r.next.touches(f)))
+        roles[f] = ContactRole::kFree;
+      else if (!touching)
+        roles[f] = ContactRole::kLifted;
+      else if (r.set.sticks(f))
+        roles[f] = ContactRole::kStick;
+      else if (r.kind != Stretch::kRun)
+        roles[f] = ContactRole::kFree;  // a slider at rest: stuck, but not relied on
+      else
+        roles[f] =
+            data.T.col(f).dot(v) < 0.0 ? ContactRole::kSlideNegative : ContactRole::kSlidePositive;
+    }
+    return roles;
+  };
+
   // Knots and input pieces.
   ReferenceTrajectory ref;
   double t0 = 0.0;
@@ -228,6 +273,7 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
     const int n = std::max(1, static_cast<int>(std::ceil(r.duration / dt - 1e-9)));
     const double step = r.duration / n;
     auto q_at = [&](double t) { return configuration(r, quintic(t / r.duration)); };
+    const ContactRoles roles = rolesOf(r);
     for (int k = first_knot ? 0 : 1; k <= n; ++k) {
       const double t = k * step, h = std::min(1e-3, 0.25 * step);
       const VecQ q = q_at(t);
@@ -244,7 +290,7 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
       ref.addKnot(t0 + t, q, v);
       if (!first_knot || k > 0) {
         const Phase ph = (r.kind == Stretch::kRamp ? r.next : r.set).phase();
-        ref.addInputPiece(t0 + (k - 1) * step, step, tau_prev, tau, ph);
+        ref.addInputPiece(t0 + (k - 1) * step, step, tau_prev, tau, ph, roles);
       }
       tau_prev = tau;
     }

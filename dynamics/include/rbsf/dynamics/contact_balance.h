@@ -19,7 +19,11 @@
 ///   friction_use mu_s f_n,k -+ f_t,k >= sigma m_o g0        every sticking contact
 ///   |tau_j| <= limit_j,  tau = M_R (dv/dt)_R + Q_R - [G1 T]_R lambda   (mechanism rows)
 ///
-/// an exact linear program (solveLp). The set is **balanced** when sigma >= 0: every
+/// an exact linear program (solveLp), over the forces the plant can make (least_norm): its
+/// rule picks the least-norm forces among the statically indeterminate ones, so a force
+/// combination N z = 0 (N the force columns over all coordinates: one that no actuator and
+/// not the part feel, such as the lateral squeeze of three sticking tips) stays at zero:
+/// z^T lambda = 0. The set is **balanced** when sigma >= 0: every
 /// touching contact pressed by at least normal_margin of the part's weight and the sticking
 /// forces inside cones shrunk to friction_use mu_s, so a plant with 20 % less friction or a
 /// few per cent more mass keeps the same contact modes. The default 0.45 leaves more than
@@ -84,6 +88,10 @@ struct BalanceSettings {
   ///        while the sticking contacts keep friction_use: 1.2 (the certificate's +20 % mu_s
   ///        draws) refuses the certified 30 degree plan's pivot, which holds those draws.
   double breakaway = 1.0;
+  /// \brief Only forces the plant's rule makes (docs/model.md: the least-norm forces among
+  ///        the statically indeterminate ones): no internal force that no actuator feels.
+  ///        Three sticking tips hold with the squeeze the plant gives them, not any squeeze.
+  bool least_norm = true;
 };
 
 /// \brief Forces, input and margins of one contact set at one state.

@@ -8,7 +8,10 @@
 /// **Prediction.** At the estimated state (q, v) each contact gets a mode from its role
 /// (contact_roles.h) and the estimate: a lifted finger is separated; a sticking or free
 /// contact is as estimated (touching: sticking or sliding); a planned slider sticks until it
-/// has broken loose (`loose`), then slides with kinetic friction against its slip. Within
+/// has broken loose (`loose`), then slides with kinetic friction against its slip. A free
+/// contact whose least-norm force under the demand would leave its cone is held at the
+/// cone's edge, as the plant's contact problem holds it (one contact at a time, the worst
+/// first, until none would). Within
 /// that mode the dynamics are affine in the input and in a generalized force f on the part
 /// (mode_dynamics.h, with the simulator's least-norm rule where the forces are
 /// indeterminate):
@@ -24,12 +27,16 @@
 /// **Rows** r_j(lambda) >= 0, linear in tau, per contact:
 ///   - touching, relied on (S, +, -):  f_n - normal_floor m_o g
 ///   - sticking (S):                   friction_use mu_s f_n -+ f_t          (two rows)
-///   - slider not yet loose:           -s f_t - breakaway mu_s f_n: pulled against its
-///                                     planned slip s beyond the static cone (breakaway)
-///   - slider loose:                   m_o (s (T_i^T dv/dt + h_t) - slip_gain (slip_speed -
-///                                     s T_i^T v)): its slip speed never falls to zero
-///                                     inside a planned slide (a slider that stops sticks
-///                                     again where mu_k < mu_s)
+///   - slider not yet loose:           -s f_t - breakaway mu_s f_n - pull_margin m_o g:
+///                                     pulled against its planned slip s beyond the static
+///                                     cone (breakaway)
+///   - slider loose:                   m_o (s (T_i^T dv/dt + h_t) - slip_gain (floor_i -
+///                                     s T_i^T v)): its slip speed never falls below its
+///                                     floor inside a planned slide (a slider that stops
+///                                     sticks again where mu_k < mu_s); the law sets the
+///                                     floor to slip_speed where the reference itself slides
+///                                     the tip that way at least that fast, else no row (a
+///                                     run that comes to rest or turns its slip)
 ///   - free (F):                       f_n >= 0 and |f_t| <= mu_s f_n (as predicted)
 ///   - lifted:                         m_o (g'' + 2 a g' + a^2 (g - clearance)), g the gap,
 ///                                     g'' = G1_i^T dv/dt + h_n (a control barrier: the tip
@@ -39,18 +46,21 @@
 /// part's weight (mass), a gravity moment (COM offset) and each actuator's gain times the
 /// demand.
 ///
-/// **QP** in x = (tau, rho, sigma) (QpLayout), with Delta = tau - tau_d and tau_d the demand
-/// (feed-forward plus feedback):
+/// **QP** in x = (tau, rho, sigma, pi) (QpLayout), with Delta = tau - tau_d and tau_d the
+/// demand (feed-forward plus feedback):
 ///
 ///   min  |S B Delta|^2 + eps_tau |Delta / (m_o g)|^2 + c_sigma sigma + sigma^2
-///        - c_rho rho + 10^-3 rho^2
-///   s.t. r_j >= -sigma m_o g                    every row (its violation)
-///        r_j >= R_j + rho m_o g                 every relied-on row (its margin)
-///        |tau_k| <= limit_k,   -1 <= rho <= margin_cap,   sigma >= 0,
+///        + c_pi pi + pi^2 - c_rho rho + 10^-3 rho^2
+///   s.t. r_j >= -sigma m_o g                    every row but the pulls (its violation)
+///        r_j >= R_j + rho m_o g                 every relied-on row but the pulls (margin)
+///        r_j >= -pi m_o g                       every breakaway pull (its shortfall)
+///        |tau_k| <= limit_k,   rho <= margin_cap,   sigma, pi >= 0,
 ///
 /// S = diag(M_kk / scale_k): each coordinate's generalized-force error per part weight
-/// (moments per part weight times 0.1 m). So the motion asked for is kept as well as the
-/// rows allow (sigma, their least violation, costs far more than a motion error), and the
+/// (moments per part weight times 0.1 m). So the rows that hold the part come first (sigma,
+/// their least violation, costs far more than a motion error); a breakaway pull that they
+/// leave out of reach is taken as far as they allow (pi, below them, above the motion); the
+/// motion asked for is kept as well as those allow, and the
 /// internal forces the motion leaves free maximise the smallest margin rho beyond the robust
 /// ones (the squeeze that holds best). Always feasible (sigma is unbounded above), solved
 /// exactly by the dual active-set method of small_qp.h; the input is clamped to its limits.
@@ -71,16 +81,22 @@ namespace rbsf {
 
 /// \brief Settings of ContactForceQp (file comment); forces as fractions of m_o g.
 struct ContactForceSettings {
-  double friction_use = 0.8;   ///< sticking contacts within this share of the nominal cone
-  double normal_floor = 0.03;  ///< relied-on touching contacts: f_n >= this x m_o g
-  double breakaway = 1.3;      ///< a slider still stuck is pulled to this x mu_s f_n
-  double slip_speed = 0.005;   ///< loose sliders keep slipping at least this fast [m/s]
-  double slip_gain = 20.0;     ///< [1/s]: how fast a slow slider is brought to slip_speed
-  double clearance = 0.002;    ///< a lifted finger's tip keeps this far from the part [m]
-  double clearance_rate = 30.0;        ///< [1/s]: the barrier's rate a
-  double margin_cap = 0.1;             ///< margin sought beyond the robust one, x m_o g
+  double friction_use = 0.8;     ///< sticking contacts within this share of the nominal cone
+  double normal_floor = 0.03;    ///< relied-on touching contacts: f_n >= this x m_o g
+  double breakaway = 1.3;        ///< a slider still stuck is pulled to this x mu_s f_n
+  double pull_margin = 0.01;     ///< and this x m_o g beyond
+  double slip_speed = 0.005;     ///< loose sliders keep slipping at least this fast [m/s]
+  double slip_gain = 20.0;       ///< [1/s]: how fast a slow slider is brought to slip_speed
+  double clearance = 0.002;      ///< a lifted finger's tip keeps this far from the part [m]
+  double clearance_rate = 30.0;  ///< [1/s]: the barrier's rate a
+  double margin_cap = 0.1;       ///< margin sought beyond the robust one, x m_o g
+  /// \brief A robust margin is at most this x m_o g: where the rows are that sensitive
+  ///        (two sticking tips almost level steer their squeeze hardly at all) the
+  ///        prediction is no better than the margin.
+  double robust_cap = 0.5;
   double margin_reward = 0.01;         ///< c_rho
   double violation_penalty = 10.0;     ///< c_sigma
+  double shortfall_penalty = 1.0;      ///< c_pi
   double input_regularization = 1e-4;  ///< eps_tau
 };
 
@@ -89,11 +105,20 @@ struct QpLayout {
   int nu = 0;  ///< m + 1 inputs first
   int margin() const { return nu; }
   int violation() const { return nu + 1; }
-  int size() const { return nu + 2; }
+  int shortfall() const { return nu + 2; }
+  int size() const { return nu + 3; }
 };
 
 /// \brief Whether each planned slider has broken loose (finger order).
 using LooseFlags = std::array<bool, kMaxFingers>;
+
+/// \brief What one tick knows of its contacts besides the state (finger order).
+struct ContactTick {
+  ContactRoles roles{};      ///< the plan's roles
+  ContactModes estimated{};  ///< touching and sliding in the estimate
+  LooseFlags loose{};        ///< planned sliders that have broken loose
+  VecC slip_floor;           ///< a loose slider's least slip speed [m/s] (file comment)
+};
 
 /// \brief The contact-consistent input of one tick (file comment). One per control loop.
 class ContactForceQp {
@@ -102,12 +127,10 @@ class ContactForceQp {
   explicit ContactForceQp(const RbsfModel& model, const ContactForceSettings& settings = {});
 
   /// \brief The input for the estimated state (q, v) closest in motion to `demand` (tau
-  ///        order) that keeps the contacts in `roles`; `estimated` says which contacts touch
-  ///        and slide in the estimate, `loose` which planned sliders broke loose. Closest
-  ///        points start from data().xi_hint. Allocation-free.
+  ///        order) that keeps the contacts in their roles (`tick`). Closest points start
+  ///        from data().xi_hint. Allocation-free.
   /// \return true when every row holds (sigma ~ 0).
-  bool solve(const VecQ& q, const VecQ& v, const ContactRoles& roles, const LooseFlags& loose,
-             const ContactModes& estimated, const VecU& demand, VecU& tau);
+  bool solve(const VecQ& q, const VecQ& v, const ContactTick& tick, const VecU& demand, VecU& tau);
 
   /// \brief Predicted normal and tangential forces of the last solve per finger [N] (0 where
   ///        separated in the prediction; f_t 0 where sliding).
@@ -119,6 +142,8 @@ class ContactForceQp {
   /// \brief Largest |f_t| / (mu_s f_n) of the predicted sticking contacts (S) at the last
   ///        solve.
   double frictionUse() const { return use_; }
+  /// \brief The accelerations dv/dt the last solve predicts for its input (a0 + B tau).
+  VecQ predictedAcceleration(const VecU& tau) const { return a0_ + B_ * tau; }
   /// \brief The QP's status at the last solve.
   QpStatus status() const { return qp_.status; }
 
@@ -128,10 +153,11 @@ class ContactForceQp {
 
  private:
   /// \brief The mode's maps at (q, v): a0_, B_, L_ (file comment) and the row indices.
-  void predict(const VecQ& q, const VecQ& v, const ContactRoles& roles, const LooseFlags& loose,
-               const ContactModes& estimated);
+  void predict(const VecQ& q, const VecQ& v, const ContactTick& tick, const VecU& demand);
+  /// \brief The maps of the modes in mode_ and saturated_.
+  void assemble(const VecQ& q, const VecQ& v, const ContactTick& tick);
   /// \brief The QP's cost and rows for `demand`.
-  void buildQp(const VecQ& q, const VecQ& v, const ContactRoles& roles, const VecU& demand);
+  void buildQp(const VecQ& q, const VecQ& v, const ContactTick& tick, const VecU& demand);
 
   using MatL = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxFingers + 5>;
 
@@ -141,6 +167,7 @@ class ContactForceQp {
   QpLayout layout_;
   double weight_;
   ContactModes mode_{};
+  std::array<int, kMaxFingers> saturated_{};  ///< +-1: a free contact held at its cone's edge
   std::array<int, kMaxFingers> normal_row_{}, tangent_row_{};
   int rows_ = 0;
   MatQR W_, N_, MinvN_;

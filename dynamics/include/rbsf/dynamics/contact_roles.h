@@ -9,8 +9,8 @@
 /// tangential column of docs/model.md, so the slip is the part's boundary point moving
 /// past the tip along t_i), `L` lifted (the finger does not touch; its stroke is
 /// position-controlled), `F` free (the plan neither relies on the contact nor lifts it: a
-/// tip that touches lightly, within its cone, with no margin asked). Example: "LS+" for finger 1 lifted, finger 2 sticking, finger 3
-/// sliding in +t.
+/// tip that touches lightly, within its cone, with no margin asked). Example: "LS+" for finger 1
+/// lifted, finger 2 sticking, finger 3 sliding in +t.
 
 #include <array>
 #include <cstdint>

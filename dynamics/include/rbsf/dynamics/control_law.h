@@ -143,17 +143,21 @@ class ControlLaw {
   ContactForceQp qp_;
   VecQ q_est_, v_est_;
   bool exact_state_ = false;
-  std::array<bool, kMaxFingers> loose_{};  ///< planned slider i has broken loose
+  ContactTick tick_;                          ///< the contacts' roles and state at the last tick
   std::array<double, kMaxFingers> pulled_{};  ///< how long it has been pulled loose [s]
   /// \brief The error at the start of the run, blended out (start_blend): the reference is
   ///        joined where the cell starts, not snapped to.
   void blendStart(double t, VecX& e);
   VecX start_error_;
   Eigen::Vector3d part_offset_ = Eigen::Vector3d::Zero();  ///< joint-only: part vs plan
+  Eigen::Vector3d e_part_ = Eigen::Vector3d::Zero(),
+                  e_part_rate_ = Eigen::Vector3d::Zero();  ///< slip each touching tip shows [m/s]
+  std::array<Vec2, kMaxFingers> boundary_{};  ///< its point on the boundary, part frame
+  std::array<bool, kMaxFingers> boundary_known_{};
   double start_time_ = 0.0;
   bool start_set_ = false;  ///< control() runs on an exact state (computeFromState)
-  SimState state_;  ///< the estimate x_hat with the simulator's contact memory
-  VecU applied_;    ///< input commanded over the last period
+  SimState state_;          ///< the estimate x_hat with the simulator's contact memory
+  VecU applied_;            ///< input commanded over the last period
   std::vector<Entry> ring_;
   std::vector<PartSample> pending_;
   int num_pending_ = 0;

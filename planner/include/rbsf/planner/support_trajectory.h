@@ -16,7 +16,8 @@
 /// motion the search checked.
 ///
 /// **Settling.** The reference starts with the part at rest for `settle_time` under the
-/// input of the first set's balance.
+/// input of the first set's balance, and ends with it at rest for `end_rest` under the last
+/// set's.
 ///
 /// **Hand-overs.** Between runs the part rests while the contact forces go from one set's
 /// to the next's: a finger that joins first rises (rest to rest) to the point where it
@@ -60,6 +61,9 @@ struct SupportTiming {
   ///        placed a little off lets its contacts settle before the first run (0.5 and 1 s
   ///        hold 230 of 256 certificate trials of the 15 and 30 degree plans, none 221).
   double settle_time = 0.5;
+  /// \brief The part rests this long at the end under the last set's forces [s], so that the
+  ///        plan, run closed loop, ends at rest.
+  double end_rest = 0.3;
 };
 
 /// \brief One stretch of the reference: a run or a hand-over.
