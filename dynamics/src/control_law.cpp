@@ -364,8 +364,9 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
     const double seen =
         exact ? 10.0 * schedule_.simulator().settings().slip_tolerance : fs.estimator_slip_speed;
     if (exact || schedule_.partFeedback()) {
+      // Slipping either way: the prediction takes its kinetic friction against the slip.
       const bool slipping =
-          slip > seen || (!exact && state_.mode[i] == ContactMode::kSlide && slip > 0.0);
+          std::abs(slip) > seen || (!exact && state_.mode[i] == ContactMode::kSlide);
       const bool stuck =
           exact ? std::abs(slip) < 0.1 * seen : state_.mode[i] == ContactMode::kStick;
       tick.loose[i] = slipping || (tick.loose[i] && !stuck);

@@ -15,6 +15,9 @@
 namespace rbsf::planner {
 namespace {
 
+/// A slip slower than this has no clear direction [m/s].
+constexpr double kClearSlip = 1e-3;
+
 /// Quintic rest-to-rest progress s(u), u in [0, 1].
 double quintic(double u) {
   u = std::clamp(u, 0.0, 1.0);
@@ -262,6 +265,19 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
     }
     return roles;
   };
+  // A slider's role at one instant of a run: the way the reference slips it there, where it
+  // clearly does (else the run's own way).
+  auto rolesAt = [&](ContactRoles roles, const VecQ& q, const VecQ& v) {
+    data.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
+    model.updateContacts(q, data);
+    for (int f = 0; f < m; ++f) {
+      if (slipSign(roles[f]) == 0) continue;
+      const double slip = data.T.col(f).dot(v);
+      if (std::abs(slip) > kClearSlip)
+        roles[f] = slip < 0.0 ? ContactRole::kSlideNegative : ContactRole::kSlidePositive;
+    }
+    return roles;
+  };
 
   // Knots and input pieces.
   ReferenceTrajectory ref;
@@ -290,7 +306,8 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
       ref.addKnot(t0 + t, q, v);
       if (!first_knot || k > 0) {
         const Phase ph = (r.kind == Stretch::kRamp ? r.next : r.set).phase();
-        ref.addInputPiece(t0 + (k - 1) * step, step, tau_prev, tau, ph, roles);
+        ref.addInputPiece(t0 + (k - 1) * step, step, tau_prev, tau, ph,
+                          r.kind == Stretch::kRun ? rolesAt(roles, q, v) : roles);
       }
       tau_prev = tau;
     }
