@@ -182,21 +182,23 @@ void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactTick& ti
   const double phi = q[layout::kPhi];
   const double dmoment = weight_ * un.com * (std::abs(std::cos(phi)) + std::abs(std::sin(phi)));
   int r = 0;
-  // Row c . lambda + constant >= -sigma W and, when `margin`, >= R + rho W.
-  auto forceRow = [&](const VecR& c, double constant, bool margin, int slack) {
+  // Row c . lambda + constant >= -slack W (its violation, sigma or pi).
+  auto forceRow = [&](const VecR& c, double constant, int slack) {
     A.row(r).head(nu).noalias() = c.transpose() * L_.leftCols(nu);
     A(r, slack) = weight_;
     b[r] = -(c.dot(L_.col(nu)) + constant);
     ++r;
-    if (!margin) return;
+  };
+  // Row c . lambda + constant >= R + rho W (its margin beyond the robust one).
+  auto marginRow = [&](const VecR& c, double constant) {
     double robust = std::abs(c.dot(L_.col(nu + 2))) * weight_ * un.mass +
                     std::abs(c.dot(L_.col(nu + 3))) * dmoment;
     for (int j = 0; j < nu; ++j)
       robust += std::abs(c.dot(L_.col(j))) * std::abs(demand[j]) * un.actuator_gain;
     robust = std::min(robust, s.robust_cap * weight_);
-    A.row(r).head(nu) = A.row(r - 1).head(nu);
+    A.row(r).head(nu).noalias() = c.transpose() * L_.leftCols(nu);
     A(r, lay.margin()) = -weight_;
-    b[r] = b[r - 1] + robust;
+    b[r] = -(c.dot(L_.col(nu)) + constant) + robust;
     ++r;
   };
   // Row on an acceleration w . dv/dt + constant >= 0 (times the part's mass), violable.
@@ -220,19 +222,23 @@ void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactTick& ti
     const bool relied = role != ContactRole::kFree && role != ContactRole::kUnplanned;
     c.setZero();
     c[normal_row_[i]] = 1.0;
-    forceRow(c, relied ? -s.normal_floor * weight_ : 0.0, relied, lay.violation());
+    forceRow(c, relied ? -s.normal_floor * weight_ : 0.0, lay.violation());
+    if (relied) marginRow(c, -s.normal_floor * weight_);
     if (mode_[i] == ContactMode::kStick && sgn == 0) {
       for (const double side : {1.0, -1.0}) {
         c.setZero();
-        c[normal_row_[i]] = (relied ? s.friction_use : 1.0) * mu_s;
+        c[normal_row_[i]] = (relied ? s.friction_limit : 1.0) * mu_s;
         c[tangent_row_[i]] = side;
-        forceRow(c, 0.0, relied, lay.violation());
+        forceRow(c, 0.0, lay.violation());
+        if (!relied) continue;
+        c[normal_row_[i]] = s.friction_use * mu_s;
+        marginRow(c, 0.0);
       }
     } else if (mode_[i] == ContactMode::kStick) {
       c.setZero();
       c[normal_row_[i]] = -s.breakaway * mu_s;
       c[tangent_row_[i]] = -sgn;
-      forceRow(c, -s.pull_margin * weight_, false, lay.shortfall());
+      forceRow(c, -s.pull_margin * weight_, lay.shortfall());
     } else if (sgn != 0) {
       const double slip = sgn * data_.T.col(i).dot(v);
       const double floor = tick.slip_floor.size() > i ? tick.slip_floor[i] : s.slip_speed;

@@ -329,12 +329,12 @@ TEST(SequentialTrials, ACancelOrAFailingTrialEndsTheRun) {
 
 // ---- the rule on a real plan ----
 
-/// A plan that holds the part at rest for 0.1 s on the test cell; with `exact`, a cell
-/// without uncertainty (the trials differ by their sensor noise alone), where every trial
-/// succeeds. With the cell's uncertainty about 85 % of them do.
+/// A plan that holds the part at rest for 0.5 s on the test cell (one finger lifted); with
+/// `exact`, a cell without uncertainty (the trials differ by their sensor noise alone), where
+/// every trial succeeds.
 const Plan& holdPlan(const RbsfModel& model) {
   static const Plan plan =
-      test::holdPlan(model, restingConfiguration(model, Pose{0.1, 0.4, 0.0}, 0.0), 0.1);
+      test::holdPlan(model, restingConfiguration(model, Pose{0.1, 0.4, 0.0}, 0.0), 0.5);
   return plan;
 }
 const RbsfModel& holdModel(bool exact) {

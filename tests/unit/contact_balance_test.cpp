@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rbsf/dynamics/contact_balance.h"
+#include "rbsf/dynamics/mode_dynamics.h"
 #include "rbsf/dynamics/forward_dynamics.h"
 #include "rbsf/dynamics/holding.h"
 #include "test_support.h"
@@ -149,12 +150,13 @@ TEST(ContactBalance, AtBreakawayTheSlidersPullTheStaticLimitAndTheStickersKeepTh
 }
 
 TEST(ContactBalance, HoldingAtRestAgreesWithHoldingTorques) {
-  // Without margins, every contact sticking: balanced exactly when holdingTorques() finds
-  // forces in the cones and an input within the limits.
+  // Without margins, every contact sticking, any internal force allowed: balanced exactly
+  // when holdingTorques() finds forces in the cones and an input within the limits.
   const RbsfModel model(test::makeCell(ShapeKind::kEllipse, 3));
   BalanceSettings s;
   s.normal_margin = 0.0;
   s.friction_use = 1.0;
+  s.least_norm = false;
   const ContactBalancer balancer(model, s);
   std::mt19937 rng(11);
   int feasible = 0, infeasible = 0;
@@ -168,6 +170,44 @@ TEST(ContactBalance, HoldingAtRestAgreesWithHoldingTorques) {
     (hold ? feasible : infeasible) += 1;
   }
   EXPECT_GT(feasible, 0);
+}
+
+TEST(ContactBalance, TheForcesAreThePlantsForTheirInput) {
+  // The balance's forces are the ones the plant's least-norm rule gives its input: the mode
+  // dynamics (an independent computation) at that input return the same forces, at rest.
+  // Without the rule the three sticking tips' squeeze is chosen freely and differs.
+  const RbsfModel model(test::makeCell(ShapeKind::kEllipse, 3));
+  const ModeDynamics dynamics(model);
+  ContactModes stick;
+  stick.fill(ContactMode::kSeparated);
+  for (int i = 0; i < 3; ++i) stick[i] = ContactMode::kStick;
+  std::mt19937 rng(5);
+  int compared = 0;
+  double free_gap = 0.0;
+  for (int k = 0; k < 40 && compared < 8; ++k) {
+    const VecQ q = test::randomContactState(model, rng);
+    ModelData data(3);
+    BalanceSettings s;
+    s.normal_margin = 0.0;
+    s.friction_use = 1.0;
+    const ContactBalance b = ContactBalancer(model, s).statics(q, ContactSet{kAll, kAll}, data);
+    if (!b.solvable) continue;
+    VecQ vdot;
+    Eigen::VectorXd lambda;
+    dynamics.acceleration(q, VecQ::Zero(7), b.tau, stick, data, vdot, &lambda);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(lambda[i], b.fn[i], 1e-6 * (1.0 + std::abs(b.fn[i]))) << "pose " << k;
+      EXPECT_NEAR(lambda[3 + i], b.ft[i], 1e-6 * (1.0 + std::abs(b.fn[i]))) << "pose " << k;
+    }
+    EXPECT_LT(vdot.norm(), 1e-6) << "at rest, pose " << k;
+    s.least_norm = false;
+    const ContactBalance f = ContactBalancer(model, s).statics(q, ContactSet{kAll, kAll}, data);
+    dynamics.acceleration(q, VecQ::Zero(7), f.tau, stick, data, vdot, &lambda);
+    for (int i = 0; i < 3; ++i) free_gap = std::max(free_gap, std::abs(lambda[3 + i] - f.ft[i]));
+    ++compared;
+  }
+  EXPECT_GE(compared, 4);
+  EXPECT_GT(free_gap, 1e-3) << "without the rule the LP's squeeze is not the plant's";
 }
 
 TEST(ContactBalance, JointsFixThePartOnlyWithThreeIndependentRows) {

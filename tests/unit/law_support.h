@@ -8,6 +8,7 @@
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/rollout.h"
 #include "rbsf/plan/plan.h"
+#include "rbsf/planner/hold_plan.h"
 #include "test_support.h"
 
 namespace rbsf::test {
@@ -109,31 +110,14 @@ inline plan::Plan twoTipsPlan(const RbsfModel& model, double amplitude = M_PI / 
   return plan;
 }
 
-/// A plan that holds the part at rest at q0 for `duration` with the holding torques (two
-/// samples, one segment).
+/// A plan that holds the part at rest at q0 for `duration` on the set that holds it best
+/// (planner/hold_plan.h), its law the one the cell's sensing allows.
 inline plan::Plan holdPlan(const RbsfModel& model, const VecQ& q0, double duration) {
-  ModelData data(model.numFingers());
-  model.updateContacts(q0, data);
-  plan::Plan plan;
-  plan.status = plan::PlanStatus::kExact;
-  plan.q0 = q0;
-  plan.start = plan.goal = {q0[0], q0[1], q0[2]};
-  plan::PlanSegment seg;
-  seg.phase = Phase::kC;
-  seg.steps = static_cast<int>(std::lround(duration / plan.simulator.time_step));
-  seg.duration = duration;
-  seg.tau = holdingTorques(model, q0, data).tau;
-  plan.segments.push_back(seg);
-  for (double t : {0.0, duration}) {
-    plan::PlanSample s;
-    s.t = t;
-    s.q = q0;
-    s.v = VecQ::Zero(q0.size());
-    s.tau = seg.tau;
-    s.f_n = VecC::Zero(model.numFingers());
-    s.phase = Phase::kC;
-    plan.samples.push_back(s);
-  }
+  planner::HoldSettings s;
+  s.duration = duration;
+  s.lift_time = std::min(s.lift_time, duration);
+  plan::Plan plan = planner::holdPlan(model, q0, s);
+  plan.joint_feedback = false;
   return plan;
 }
 

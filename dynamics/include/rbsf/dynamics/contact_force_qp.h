@@ -81,8 +81,9 @@ namespace rbsf {
 
 /// \brief Settings of ContactForceQp (file comment); forces as fractions of m_o g.
 struct ContactForceSettings {
-  double friction_use = 0.8;     ///< sticking contacts within this share of the nominal cone
-  double normal_floor = 0.03;    ///< relied-on touching contacts: f_n >= this x m_o g
+  double friction_use = 0.8;     ///< sticking contacts sought within this share of the cone
+  double friction_limit = 0.8;   ///< and kept within this one
+  double normal_floor = 0.03;    ///< relied-on touching contacts kept above this x m_o g
   double breakaway = 1.3;        ///< a slider still stuck is pulled to this x mu_s f_n
   double pull_margin = 0.01;     ///< and this x m_o g beyond
   double slip_speed = 0.005;     ///< loose sliders keep slipping at least this fast [m/s]
