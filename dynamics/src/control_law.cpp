@@ -29,7 +29,7 @@ constexpr int kQpSweeps = 8;
 ControlLaw::ControlLaw(const FeedbackSchedule& schedule)
     : schedule_(schedule),
       ws_(std::make_unique<SimulatorWorkspace>(schedule.model().numFingers())),
-      qp_(schedule.model()),
+      qp_(schedule.model(), schedule.settings().forces),
       state_(VecQ::Zero(schedule.model().configDim()), VecQ::Zero(schedule.model().configDim())) {
   const double h = schedule.timeStep();
   const PartPoseSensing& camera = schedule.sensing().part_pose;

@@ -140,26 +140,6 @@ TEST_F(DecisiveModesTest, PlansKeepTheRuleInEveryPropagationStep) {
   EXPECT_GT(k, 0);
 }
 
-TEST_F(DecisiveModesTest, NinetyDegreePlanIsFollowedByTheJointServoToItsEnd) {
-  // Without the rule no plan of this turn (seeds 1-8) was followed: the servo's corrections
-  // flipped contacts that the plan held at the edge of a mode
-  // (the record on refinement under joint tracking in docs/notes/). The nominal trial (no draws,
-  // exact sensors) of a cell that sees only its joints stays on the plan's path to its end;
-  // the plan ends moving, so what follows the end is not asked.
-  ReorientationPlanner rp(model, settings(2));
-  Plan plan;
-  ASSERT_TRUE(rp.solve(problem(-90.0), plan));
-  ASSERT_EQ(plan.status, plan::PlanStatus::kExact);
-  Cell joints_only = model.cell();
-  joints_only.sensing.part_pose.present = false;
-  const RbsfModel cell(joints_only);
-  std::vector<TrajectorySample> trace;
-  const TrialOutcome o = traceTrial(cell, plan, {}, -1, trace);
-  EXPECT_TRUE(o.departure_time < 0.0 || o.departure_time >= plan.duration() - 1e-9)
-      << "left the path at " << o.departure_time << " s of " << plan.duration() << " s";
-  EXPECT_GE(o.min_f_n, 0.0);
-}
-
 TEST_F(DecisiveModesTest, BadRuleSettingsAreRefused) {
   ReorientationPlanner rp(model, settings(1));
   const PlannerSetup setup = rp.setup(problem(-15.0));

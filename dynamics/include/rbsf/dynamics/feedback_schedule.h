@@ -53,6 +53,7 @@
 
 #include <Eigen/Core>
 
+#include "rbsf/dynamics/contact_force_qp.h"
 #include "rbsf/dynamics/mode_dynamics.h"
 #include "rbsf/dynamics/model.h"
 #include "rbsf/dynamics/reference_trajectory.h"
@@ -115,6 +116,8 @@ struct FeedbackSettings {
   /// \brief Part accelerations outside the planned mode (contacts slipping or sticking
   ///        unlike the plan), on x, y [m/s^2] and phi [rad/s^2] alike.
   double slip_acceleration = 0.01;
+  /// \brief The contact forces the law keeps (contact_force_qp.h).
+  ContactForceSettings forces;
 };
 
 /// \brief Gains and step maps at the knots; immutable once built, one per plan and
