@@ -44,7 +44,10 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
     SupportSearch search(model_, ss);
     for (int n = 0; n < std::max(1, settings_.max_paths) && !runs; ++n) {
       if (timeLeft() <= 0.0) break;
+      if (settings_.max_expansions > 0 && expansions_ >= settings_.max_expansions) break;
       search.setTimeLimit(timeLeft());
+      if (settings_.max_expansions > 0)
+        search.setMaxExpansions(std::min(ss.max_expansions, settings_.max_expansions - expansions_));
       const SupportPath path =
           search.search(problem.start, problem.start_theta, problem.goal, settings_.cancel);
       expansions_ += path.expansions;

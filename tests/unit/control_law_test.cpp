@@ -22,7 +22,7 @@ TEST(FeedbackSchedule, TheLqrGainHoldsABalanceTheOpenLoopLoses) {
   // perturbation on the contacts' manifold decays.
   const RbsfModel model(test::twoTipsCell());
   const VecQ q0 = test::twoTipsConfiguration(model, 0.0);
-  const plan::Plan plan = test::holdPlan(model, q0, 1.0);
+  const plan::Plan plan = test::restPlan(model, q0, 1.0);
   const FeedbackSchedule schedule(model, plan::makeReference(plan), Sensing{}, SimulatorSettings{});
   ASSERT_TRUE(schedule.partFeedback());
   const int k = schedule.knotAt(0.5);

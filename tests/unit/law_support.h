@@ -121,4 +121,32 @@ inline plan::Plan holdPlan(const RbsfModel& model, const VecQ& q0, double durati
   return plan;
 }
 
+/// A plan that keeps the part at q0 for `duration` with the holding torques of every contact
+/// (holdingTorques; two samples, one segment): the balance of a part on frictionless tips.
+inline plan::Plan restPlan(const RbsfModel& model, const VecQ& q0, double duration) {
+  ModelData data(model.numFingers());
+  model.updateContacts(q0, data);
+  plan::Plan plan;
+  plan.status = plan::PlanStatus::kExact;
+  plan.q0 = q0;
+  plan.start = plan.goal = {q0[0], q0[1], q0[2]};
+  plan::PlanSegment seg;
+  seg.phase = Phase::kC;
+  seg.steps = static_cast<int>(std::lround(duration / plan.simulator.time_step));
+  seg.duration = duration;
+  seg.tau = holdingTorques(model, q0, data).tau;
+  plan.segments.push_back(seg);
+  for (double t : {0.0, duration}) {
+    plan::PlanSample s;
+    s.t = t;
+    s.q = q0;
+    s.v = VecQ::Zero(q0.size());
+    s.tau = seg.tau;
+    s.f_n = VecC::Zero(model.numFingers());
+    s.phase = Phase::kC;
+    plan.samples.push_back(s);
+  }
+  return plan;
+}
+
 }  // namespace rbsf::test

@@ -45,7 +45,7 @@ struct Options {
       start_theta = "0", planner = "auto", attempts = "0", time_limit = "30", seed = "1", out, csv,
       svg, report, svg_still = "0", knots = "100", optimize_time_limit = "30",
       optimize_iterations = "500", optimize_tolerance = "1e-6", goal_angle = "nearest",
-      trial_seed = "1", friction_use, support_lattice;
+      trial_seed = "1", friction_use, support_lattice, max_expansions;
   CertificateOptions certificate;
   bool quiet = false, no_optimize = false, reproducible = false, no_decisive_modes = false;
 };
@@ -197,6 +197,10 @@ int run(int argc, char** argv) {
                  "support planner: the sticking forces' share of the friction cone, one search "
                  "per value in order, each in (0, 1] (default " +
                      defaultFrictionUses() + ")");
+  app.add_option("--max-expansions", o.max_expansions,
+                 "support planner: at most this many expansions over all its searches, a "
+                 "budget that gives the same plan on any machine where the time limit does not "
+                 "bind first (default: none)");
   app.add_option("--support-lattice", o.support_lattice,
                  "support planner: the search's angle and position steps (default " +
                      defaultLattice() + "; finer lattices find more paths and take longer)");
@@ -237,6 +241,8 @@ int run(int argc, char** argv) {
   certificate.seed =
       static_cast<std::uint64_t>(parseInteger(o.trial_seed, "--trial-seed", 1, 1LL << 53));
   parseSupportOptions(o.friction_use, o.support_lattice, pipeline.support);
+  if (!o.max_expansions.empty())
+    pipeline.support.max_expansions = parseInteger(o.max_expansions, "--max-expansions", 1, 1000000000);
   planner::Problem problem;
   problem.start = parsePose(o.start, "--start");
   problem.goal = parsePose(o.goal, "--goal");

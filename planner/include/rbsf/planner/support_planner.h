@@ -35,6 +35,10 @@ struct SupportPlannerSettings {
   FeedbackSettings feedback;    ///< the law of the closed-loop run
   SimulatorSettings simulator;  ///< the plan's physics
   double time_limit = 30.0;     ///< search wall time, all attempts [s]
+  /// \brief Expansions of all the searches together (0: no bound). A budget in expansions
+  ///        gives the same plan on any machine, under any load, where the time limit does not
+  ///        bind first.
+  long max_expansions = 0;
   /// \brief The sticking forces' share of the friction cone (BalanceSettings::friction_use)
   ///        of each search attempt, the strongest margin first: the next is tried when an
   ///        attempt ends without a path whose run ends on the goal.

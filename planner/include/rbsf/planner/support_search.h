@@ -114,6 +114,8 @@ class SupportSearch {
   void block(const SupportStep& step, int radius = 0);
   /// \brief The wall time of the next search() [s].
   void setTimeLimit(double seconds) { settings_.time_limit = seconds; }
+  /// \brief The expansions of the next search().
+  void setMaxExpansions(long expansions) { settings_.max_expansions = expansions; }
   /// \brief Cells blocked so far.
   std::size_t blockedCount() const { return blocked_.size(); }
 
