@@ -367,8 +367,11 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
       // Slipping either way: the prediction takes its kinetic friction against the slip.
       const bool slipping =
           std::abs(slip) > seen || (!exact && state_.mode[i] == ContactMode::kSlide);
+      // Stuck again: an exact state shows it; an estimate, where the reference slides the tip
+      // faster than the estimate can tell and the estimate sees a fraction of that slip.
+      const double planned = sgn * data.T.col(i).dot(at_.v);
       const bool stuck =
-          exact ? std::abs(slip) < 0.1 * seen : state_.mode[i] == ContactMode::kStick;
+          exact ? std::abs(slip) < 0.1 * seen : planned > seen && std::abs(slip) < 0.25 * planned;
       tick.loose[i] = slipping || (tick.loose[i] && !stuck);
     } else {
       // Without the part's pose the slip cannot be seen: loose once pulled long enough.

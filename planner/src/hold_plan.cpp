@@ -39,7 +39,8 @@ plan::Plan holdPlan(const RbsfModel& model, const VecQ& q0, const HoldSettings& 
   const std::uint32_t set = bestHoldingSet(model, q0, s.balance);
   if (set == 0) throw InputError("hold plan: no contact set holds the part at rest there");
   ModelData data(m);
-  const ContactBalance b = ContactBalancer(model, s.balance).statics(q0, ContactSet{set, set}, data);
+  const ContactBalance b =
+      ContactBalancer(model, s.balance).statics(q0, ContactSet{set, set}, data);
   ContactRoles roles{};
   for (int i = 0; i < m; ++i)
     roles[i] = (set >> i) & 1u ? ContactRole::kStick : ContactRole::kLifted;

@@ -47,7 +47,8 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
       if (settings_.max_expansions > 0 && expansions_ >= settings_.max_expansions) break;
       search.setTimeLimit(timeLeft());
       if (settings_.max_expansions > 0)
-        search.setMaxExpansions(std::min(ss.max_expansions, settings_.max_expansions - expansions_));
+        search.setMaxExpansions(
+            std::min(ss.max_expansions, settings_.max_expansions - expansions_));
       const SupportPath path =
           search.search(problem.start, problem.start_theta, problem.goal, settings_.cancel);
       expansions_ += path.expansions;

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "rbsf/dynamics/contact_balance.h"
-#include "rbsf/dynamics/mode_dynamics.h"
 #include "rbsf/dynamics/forward_dynamics.h"
 #include "rbsf/dynamics/holding.h"
+#include "rbsf/dynamics/mode_dynamics.h"
 #include "test_support.h"
 
 namespace rbsf {

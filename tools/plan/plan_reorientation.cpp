@@ -242,7 +242,8 @@ int run(int argc, char** argv) {
       static_cast<std::uint64_t>(parseInteger(o.trial_seed, "--trial-seed", 1, 1LL << 53));
   parseSupportOptions(o.friction_use, o.support_lattice, pipeline.support);
   if (!o.max_expansions.empty())
-    pipeline.support.max_expansions = parseInteger(o.max_expansions, "--max-expansions", 1, 1000000000);
+    pipeline.support.max_expansions =
+        parseInteger(o.max_expansions, "--max-expansions", 1, 1000000000);
   planner::Problem problem;
   problem.start = parsePose(o.start, "--start");
   problem.goal = parsePose(o.goal, "--goal");

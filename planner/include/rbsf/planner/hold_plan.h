@@ -34,7 +34,8 @@ struct HoldSettings {
 
 /// \brief The contact set holdPlan() holds the part on at q0 (bit i: finger i), 0 when none
 ///        of the candidates is balanced and determined.
-std::uint32_t bestHoldingSet(const RbsfModel& model, const VecQ& q0, const BalanceSettings& balance);
+std::uint32_t bestHoldingSet(const RbsfModel& model, const VecQ& q0,
+                             const BalanceSettings& balance);
 
 /// \brief The rest of the file comment. \throws InputError when no set holds the part at q0.
 plan::Plan holdPlan(const RbsfModel& model, const VecQ& q0, const HoldSettings& settings = {});
