@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 
+#include "rbsf/dynamics/contact_force_qp.h"
 #include "rbsf/dynamics/control_law.h"
 #include "rbsf/dynamics/holding.h"
 #include "rbsf/dynamics/placement.h"
@@ -160,6 +161,30 @@ void BM_ControlLawCompute(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ControlLawCompute)->Arg(1)->Arg(0);
+
+/// The law's per-tick problem alone (contact_force_qp.h): prediction and QP at the default
+/// part's rest, Arg 2: on two sticking tips, finger 1 lifted; 3: on three.
+void BM_ContactForceQp(benchmark::State& state) {
+  const RbsfModel model(benchCell(3, 0.5));
+  const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.40, 0.0}, 0.0);
+  ModelData data(model.numFingers());
+  model.updateContacts(q0, data);
+  const HoldingSolution hold = holdingTorques(model, q0, data);
+  ContactForceQp qp(model);
+  ContactTick tick;
+  tick.roles = parseRoles(state.range(0) == 2 ? "LSS" : "SSS", 3, "roles");
+  tick.estimated.fill(ContactMode::kSeparated);
+  for (int i = 0; i < 3; ++i) tick.estimated[i] = ContactMode::kStick;
+  tick.slip_floor = VecC::Zero(3);
+  const VecQ v = VecQ::Zero(q0.size());
+  VecU tau;
+  qp.data().xi_hint = data.xi_hint;
+  for (auto _ : state) {
+    qp.solve(q0, v, tick, hold.tau, tau);
+    benchmark::DoNotOptimize(tau.data());
+  }
+}
+BENCHMARK(BM_ContactForceQp)->Arg(2)->Arg(3);
 
 }  // namespace
 }  // namespace rbsf

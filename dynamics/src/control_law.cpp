@@ -181,6 +181,7 @@ void ControlLaw::closeGaps(VecQ& q, const ContactModes& modes) {
     const VecC w = D.ldlt().solve(gap);
     q.head<3>() -= G * w;
   }
+  state_.xi_hint = data.xi_hint;  // the next search starts here
 }
 
 bool ControlLaw::computeJointOnly(double t, const VecU& joints, VecU& tau) {

@@ -160,8 +160,12 @@ TEST_F(NoAllocation, ReferenceSamplingAndTheControlLaw) {
     ref.addKnot(0.01 * k, q0, v);
   }
   const VecU tau0 = VecU::Constant(4, 10.0), tau1 = VecU::Constant(4, 20.0);
+  // Every role in turn: sticking, sliding both ways (pulled loose, then with a slip floor),
+  // lifted (a barrier), free, and none stated.
+  const char* roles[] = {"SSS", "LS+", "LS+", "L-S", "SFS", "+S-", "LSS", "", "S+S", "SSL"};
   for (int j = 0; j < 10; ++j)
-    ref.addInputPiece(0.1 * j, 0.1, tau0, j % 2 ? tau1 : VecU(), Phase::kC);
+    ref.addInputPiece(0.1 * j, 0.1, tau0, j % 2 ? tau1 : VecU(), Phase::kC,
+                      *roles[j] ? parseRoles(roles[j], 3, "roles") : ContactRoles{});
   for (const bool part : {true, false}) {
     Sensing sensing;
     sensing.part_pose.present = part;
