@@ -18,11 +18,6 @@ constexpr int kPendingCapacity = 16;
 /// The joint-only alpha-beta filter's largest tracking index (acceleration noise x h^2 /
 /// measurement noise): alpha 0.979, beta 1.46, well inside the stable region.
 constexpr double kMaxTrackingIndex = 10.0;
-/// Sweeps of the contact QP's dual coordinate ascent: a few, from zero each period. Rows a
-/// mode cannot meet (an indeterminate contact set's internal forces) make the ascent
-/// diverge; a few sweeps keep such a correction small (measured: 5, 15 and 60 sweeps hold
-/// the same trials of a rest and of a balance; 60 cost 7.5 us per call, 5 cost 2.2 us).
-constexpr int kQpSweeps = 8;
 
 }  // namespace
 
@@ -42,11 +37,6 @@ ControlLaw::ControlLaw(const FeedbackSchedule& schedule)
   e_ = VecX::Zero(2 * n);
   d_ = VecX::Zero(2 * n);
   ej_ = dej_ = alpha_ = beta_ = VecU::Zero(nu);
-  input_scale_.resize(nu);
-  const Cell& c = schedule.model().cell();
-  for (int j = 0; j < nu; ++j)
-    input_scale_[j] = schedule.settings().input_fraction *
-                      (j == layout::kTauTheta ? c.base.torque_limit : c.fingers[j - 1].force_limit);
   for (int j = 0; j < nu; ++j) {
     const double noise = std::max(j == layout::kTauTheta ? schedule.sensing().joints.angle_noise
                                                          : schedule.sensing().joints.stroke_noise,
@@ -393,32 +383,6 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
   }
   demand_ = tau;
   return clamped;
-}
-
-void ControlLaw::keepContacts(int knot, const VecX& e, VecU& du) {
-  const Eigen::MatrixXd& G = schedule_.contactRows(knot);
-  const int rows = static_cast<int>(G.rows());
-  // r = bound - G du: what each row still lacks (<= 0: met).
-  qp_r_ = schedule_.contactBound(knot);
-  qp_r_.noalias() -= schedule_.contactStateGain(knot) * e;
-  qp_r_.noalias() -= G * du;
-  if (qp_r_.maxCoeff() <= 1e-9) return;
-  // In scaled inputs y = R^1/2 (du' - du): min |y|^2 s.t. (G R^-1/2) y >= r.
-  qp_g_ = G * input_scale_.asDiagonal();
-  qp_p_.noalias() = qp_g_ * qp_g_.transpose();
-  qp_l_.setZero(rows);
-  for (int sweep = 0; sweep < kQpSweeps; ++sweep) {
-    double change = 0.0;
-    for (int i = 0; i < rows; ++i) {
-      if (!(qp_p_(i, i) > 0.0)) continue;
-      const double w = qp_l_[i] + (qp_r_[i] - qp_p_.row(i).dot(qp_l_)) / qp_p_(i, i);
-      const double next = std::max(0.0, w);
-      change = std::max(change, std::abs(next - qp_l_[i]) * qp_p_(i, i));
-      qp_l_[i] = next;
-    }
-    if (change <= 1e-6) break;  // [N]: far below what a contact can tell
-  }
-  du.noalias() += input_scale_.asDiagonal() * (qp_g_.transpose() * qp_l_);
 }
 
 void ControlLaw::recordApplied(const VecU& tau) { applied_ = tau; }

@@ -65,7 +65,7 @@ FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory t
     if (!(std::isfinite(x) && x > 0.0))
       throw InputError("feedback settings: every weight, period and noise must be positive");
   if (!(s.settle_time >= 0.0 && s.horizon_tail >= 0.0 && s.damping_ratio >= 0.0 &&
-        s.contact_force_floor >= 0.0 && s.cone_margin <= 1.0 && s.integral_time >= 0.0 &&
+        s.integral_time >= 0.0 &&
         s.integral_limit >= 0.0))
     throw InputError(
         "feedback settings: settle_time, horizon_tail, damping_ratio, integral_time and "
@@ -96,7 +96,6 @@ FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory t
     const MatrixXd A2 = lin.A * lin.A;
     Ad_.push_back(MatrixXd::Identity(lin.A.rows(), lin.A.cols()) + h_ * lin.A + 0.5 * h_ * h_ * A2);
     Bd_.push_back(h_ * lin.B + 0.5 * h_ * h_ * lin.A * lin.B);
-    addContactRows(lin, modes_.back());
     tangent.push_back(std::move(lin.tangent));
   }
   if (partFeedback())
@@ -169,41 +168,6 @@ ContactModes FeedbackSchedule::plannedModes(double t, SimulatorWorkspace& ws,
     modes[i] = mode;
   }
   return modes;
-}
-
-void FeedbackSchedule::addContactRows(const ModeLinearization& lin, const ContactModes& modes) {
-  const int m = model_.numFingers(), nu = model_.controlDim(), n = model_.configDim();
-  const double mu = settings_.cone_margin * model_.cell().friction.mu_static;
-  const double floor =
-      settings_.contact_force_floor * model_.cell().object.mass * model_.cell().gravity;
-  // Rows of lambda: touching normals in finger order, then sticking tangentials.
-  int normal = 0, tangential = 0, rows = 0;
-  for (int i = 0; i < m; ++i) {
-    tangential += modes[i] != ContactMode::kSeparated;
-    rows += modes[i] == ContactMode::kSeparated ? 0 : modes[i] == ContactMode::kStick ? 3 : 1;
-  }
-  if (!partFeedback()) rows = 0;
-  MatrixXd G(rows, nu), Cx(rows, 2 * n);
-  VectorXd c0(rows);
-  int r = 0;
-  for (int i = 0; i < m && rows > 0; ++i) {
-    if (modes[i] == ContactMode::kSeparated) continue;
-    G.row(r) = lin.Lu.row(normal);
-    Cx.row(r) = lin.Lx.row(normal);
-    c0[r++] = floor - lin.lambda[normal];
-    if (modes[i] == ContactMode::kStick) {
-      for (const double s : {1.0, -1.0}) {
-        G.row(r) = mu * lin.Lu.row(normal) + s * lin.Lu.row(tangential);
-        Cx.row(r) = mu * lin.Lx.row(normal) + s * lin.Lx.row(tangential);
-        c0[r++] = -(mu * lin.lambda[normal] + s * lin.lambda[tangential]);
-      }
-      ++tangential;
-    }
-    ++normal;
-  }
-  Gc_.push_back(std::move(G));
-  Cx_.push_back(std::move(Cx));
-  c0_.push_back(std::move(c0));
 }
 
 int FeedbackSchedule::knotAt(double t) const {

@@ -69,7 +69,7 @@ RunLog runLaw(const RbsfModel& cell, const Plan& plan, const plan::TrialDraw& dr
     for (int j = 0; j <= m; ++j) tau[j] *= draw.actuator_gain[j];
     sim.step(s, tau, *ws, &report);
     const ContactRoles& roles = schedule.roles(schedule.knotAt(n * h));
-    log.worst_use = std::max(log.worst_use, law.qpForTest().frictionUse());
+    log.worst_use = std::max(log.worst_use, law.contactForces().frictionUse());
     for (int i = 0; i < m; ++i)
       if (roles[i] == ContactRole::kStick && report.contacts[i].mode == ContactMode::kSlide)
         log.relied_slipped = true;

@@ -68,7 +68,6 @@ TEST(FeedbackSchedule, WithoutPartSensingTheGainIsTheJointServo) {
     EXPECT_NEAR(K(j, n + col), inertia * 2 * z * w, 1e-9 * inertia * w);
     EXPECT_EQ(K.row(j).head(3).norm(), 0.0) << "no term on the part";
   }
-  EXPECT_EQ(schedule.contactRows(0).rows(), 0);
 }
 
 TEST(ControlLaw, TheEstimateFollowsANominalPlantFromExactSensors) {

@@ -5,24 +5,28 @@
 ///
 /// Every control period [t, t + h) it takes the joints measured at t (theta, l_1..l_m, no
 /// velocities) and any part poses measured since (timestamped, late by the sensor's
-/// latency), estimates the state and returns
+/// latency), estimates the state and chooses the input by the contact forces it produces:
 ///
-///   tau = sat( tau_ff(t + h/2) - K(t) (x_hat(t) - x_ref(t)) - K_i(t) xi ),
+///   demand  tau_d = tau_ff(t + h/2) - K(t) e - K_i(t) xi,   e = x_hat(t) - x_ref(t),
+///   input   tau = the contact-force QP at x_hat for the roles of the plan at t, closest in
+///           motion to tau_d (contact_force_qp.h),
 ///
 /// tau_ff and x_ref from the plan's reference (feedback_schedule.h: held at rest after the
 /// plan's end), K the schedule's gain: a time-varying LQR on the planned mode's manifold
 /// when the cell senses the part, the joint PD of a cell that does not; xi the integral of
-/// the estimated part pose error (x, y, phi), accumulated only while no input is clamped
-/// and held within the schedule's integral_limit (anti-windup). With part feedback the
-/// input change du = -K e - K_i xi is then projected onto the contact constraints of the
-/// schedule (forces inside cones shrunk by cone_margin, normal forces above a floor):
+/// the estimated part pose error (x, y, phi), accumulated only while no input is at its
+/// limit and held within the schedule's integral_limit (anti-windup). The error a run starts
+/// with is not corrected at once but decays with start_blend: the reference is joined where
+/// the cell starts (a part placed a millimetre off is not jerked back).
 ///
-///   min (du' - du)^T R (du' - du)  s.t.  G du' >= c0 - C_x e,
-///
-/// R the LQR's input weights, by a few sweeps of Hildreth's dual coordinate ascent
-/// (kQpSweeps; the last iterate when the rows cannot all be met). sat then clamps
-/// each input to the cell's limit (tau_theta to +-torque_limit [N m], tau_i to
-/// +-force_limit [N]).
+/// The QP keeps every contact in its role: sticking ones inside their cones with margins
+/// for the cell's stated uncertainty, the squeeze that holds best where the actuators steer
+/// it; lifted fingers clear of the part; planned sliders pulled loose from rest, then
+/// slipping at least at a floor. A planned slider is loose once it is seen slipping (the
+/// estimate's contact memory or slip; on an exact state, its slip), and pulled again when
+/// seen stuck where the reference slides it; without the part's pose it is taken loose after
+/// being pulled for breakaway_time. Every input stays within the cell's limits (tau_theta
+/// within +-torque_limit [N m], tau_i within +-force_limit [N]).
 ///
 /// State estimate: an extended Kalman filter whose process model is the nominal simulator
 /// itself (the schedule's: the plan's cell and simulator settings, with its contact
@@ -50,7 +54,11 @@
 /// lambda = servo_acceleration h^2 / joint noise, at most 10: noise-free encoders would
 /// otherwise give alpha = 1, beta = 2, the filter's marginally stable limit):
 ///   e <- e + h e',  r = y_j - Theta_ref,j - e,  e <- e + alpha r,  e' <- e' + beta / h r,
-/// and the part is taken to be where the plan has it.
+/// and the part is where the plan has it, offset as the strokes put it: at the start every
+/// finger touches (the cell places them under the part), which fixes the part's pose and
+/// its offset from the plan's (in the part's frame); later the offset pose is moved the
+/// least that keeps the planned contacts on the fingers. The contact forces are predicted
+/// there.
 ///
 /// Real time: compute() and addPartPose() allocate nothing; the buffers, and the
 /// estimator's simulator workspace, are allocated at construction. One ControlLaw per
@@ -110,7 +118,9 @@ class ControlLaw {
   std::uint64_t droppedSamples() const { return dropped_; }
 
   const FeedbackSchedule& schedule() const { return schedule_; }
-  const ContactForceQp& qpForTest() const { return qp_; }
+  /// \brief The contact-force QP of the last compute(): its predicted forces, margin and
+  ///        friction use.
+  const ContactForceQp& contactForces() const { return qp_; }
 
  private:
   /// \brief What the estimator remembers of one control step.
@@ -135,8 +145,6 @@ class ControlLaw {
   void keepContactVelocities();
   bool control(double t, int knot, const VecX& e, const Eigen::Vector3d& xi, VecU& tau);
   bool computeJointOnly(double t, const VecU& joints, VecU& tau);
-  /// \brief The QP of the file comment on demand_ - tau_ff at knot k.
-  void keepContacts(int knot, const VecX& e, VecU& du);
 
   const FeedbackSchedule& schedule_;
   std::unique_ptr<SimulatorWorkspace> ws_;
@@ -165,11 +173,6 @@ class ControlLaw {
   VecU demand_;
   VecX e_, d_;
   VecU alpha_, beta_;  ///< joint-only estimator gains (file comment)
-  VecU input_scale_;   ///< R^-1/2: the LQR's tolerated input per entry
-  using VecK = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kMaxFingers, 1>;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kMaxFingers, 3 * kMaxFingers> qp_p_;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kMaxFingers, kMaxFingers + 1> qp_g_;
-  VecK qp_r_, qp_l_;
   VecU ej_, dej_;  ///< joint-only estimate: joint errors and their rates
   Eigen::Vector3d xi_ = Eigen::Vector3d::Zero();  ///< integral of the part pose error
   ReferenceSample at_, mid_;

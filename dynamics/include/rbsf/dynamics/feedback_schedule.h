@@ -6,19 +6,17 @@
 ///
 /// Knots k = 0..K at t_k = t_0 + k D (D = gain_period rounded to whole control steps h)
 /// cover the plan and `settle_time` after it, in which the reference holds the plan's
-/// final pose at rest with the plan's last input (reference()). Each knot's reference
-/// state gets its planned mode from one simulator step taken from it under the plan's
-/// input (contacts remembered sliding where the reference slips them), with two
-/// corrections: a contact pressed with less than min_normal_force x the part's weight is
-/// no constraint (a gain that pulled on it would open it), and a contact without friction
-/// slides. That mode is linearised (mode_dynamics.h): A, B, F and the tangent basis P of
+/// final pose at rest with the plan's last input (reference()). Each knot gets the contacts'
+/// roles (contact_roles.h): the plan's where it states them, else those of one simulator
+/// step taken from the knot's reference state under the plan's input (contacts remembered
+/// sliding where the reference slips them): separated is lifted, pressed with less than
+/// min_normal_force x the part's weight free, else sticking or sliding as the step did. The
+/// LQR's mode follows the roles (S sticks, + and - slide, L and F are no constraint: a gain
+/// that pulled on a lightly pressed contact would open it; a contact without friction
+/// slides). That mode is linearised (mode_dynamics.h): A, B, F and the tangent basis P of
 /// its state manifold; over the knot the step map of h is A_d = I + hA + h^2 A^2 / 2,
-/// B_d = hB + h^2 AB / 2.
-///
-/// Contact constraints (part_pose sensed): the mode's force map linearised at the knot,
-/// lambda ~ lambda_k + Lx e + Lu du, gives each touching contact a row f_n >= floor and
-/// each sticking contact two rows keeping f_t within cone_margin mu_s f_n; the law
-/// projects its input onto them (control_law.h).
+/// B_d = hB + h^2 AB / 2. The law keeps the contacts in their roles by the forces it
+/// predicts (contact_force_qp.h, with `forces`).
 ///
 /// LQR (part_pose sensed). Error e = x - x_ref in manifold coordinates z = P^T e, cost
 /// sum z^T P^T Q P z + du^T R du with Bryson weights Q = diag(1 / tolerated error^2) and
@@ -88,11 +86,6 @@ struct FeedbackSettings {
   double base_rate = 0.2;             ///< theta' [rad/s]
   double stroke_speed = 0.05;         ///< l_i' [m/s]
   double input_fraction = 0.02;       ///< tolerated input, fraction of its limit
-  /// \brief The law keeps each sticking contact's predicted force inside its friction cone
-  ///        shrunk to cone_margin x mu_s, and each touching contact's normal force above
-  ///        contact_force_floor x the part's weight (part feedback only).
-  double cone_margin = 0.8;
-  double contact_force_floor = 0.01;
   /// \brief Integral action on the part's pose: the integral of its error is weighted as
   ///        an error of (position, angle) x integral_time [m s, rad s]; 0 turns it off.
   double integral_time = 0.5;
@@ -165,14 +158,6 @@ class FeedbackSchedule {
   /// \brief Integral gain at knot k, (m + 1) x 3: du = -gain e - integralGain xi, xi the
   ///        integral of the part's pose error (x, y, phi) [m s, rad s]. Zero for joint PD.
   const Eigen::MatrixXd& integralGain(int k) const { return Ki_[k]; }
-  /// \brief Contact constraints of knot k on the input change du = tau - tau_ff:
-  ///        contactRows(k) du >= contactBound(k) - contactStateGain(k) e, e = x - x_ref,
-  ///        one row per touching contact (f_n >= floor) and two per sticking contact
-  ///        (cone_margin mu_s f_n -+ f_t >= 0), from the mode's force map lambda(x, tau)
-  ///        (mode_dynamics.h, Lx and Lu). Empty for joint PD.
-  const Eigen::MatrixXd& contactRows(int k) const { return Gc_[k]; }
-  const Eigen::VectorXd& contactBound(int k) const { return c0_[k]; }
-  const Eigen::MatrixXd& contactStateGain(int k) const { return Cx_[k]; }
   /// \brief Kalman gains at knot k: joints 2n x (m + 1), part 2n x 3 (empty if not sensed).
   const Eigen::MatrixXd& jointGain(int k) const { return Lj_[k]; }
   const Eigen::MatrixXd& partGain(int k) const { return Lp_[k]; }
@@ -186,7 +171,6 @@ class FeedbackSchedule {
  private:
   void computeLqr(const std::vector<Eigen::MatrixXd>& tangent);
   void computePd();
-  void addContactRows(const ModeLinearization& lin, const ContactModes& modes);
   void computeKalman();
   ContactModes plannedModes(double t, SimulatorWorkspace& ws, ContactRoles& roles) const;
 
@@ -200,8 +184,7 @@ class FeedbackSchedule {
   double t0_ = 0.0;
   VecQ hold_q_;
   VecU hold_tau_;
-  std::vector<Eigen::MatrixXd> Ad_, Bd_, F_, K_, Ki_, Lj_, Lp_, Gc_, Cx_;
-  std::vector<Eigen::VectorXd> c0_;
+  std::vector<Eigen::MatrixXd> Ad_, Bd_, F_, K_, Ki_, Lj_, Lp_;
   std::vector<ContactModes> modes_;
   std::vector<ContactRoles> roles_;
 };
