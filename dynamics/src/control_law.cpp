@@ -331,7 +331,8 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
   tick.estimated.fill(ContactMode::kSeparated);
   for (int i = 0; i < m; ++i) {
     if (data.contacts[i].gap > touch) continue;
-    const bool slides = exact ? std::abs(data.T.col(i).dot(v_est_)) > fs.estimator_slip_speed
+    const bool slides = exact ? std::abs(data.T.col(i).dot(v_est_)) >
+                                    10.0 * schedule_.simulator().settings().slip_tolerance
                               : schedule_.partFeedback() && state_.mode[i] == ContactMode::kSlide;
     tick.estimated[i] = slides ? ContactMode::kSlide : ContactMode::kStick;
   }

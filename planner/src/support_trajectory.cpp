@@ -236,10 +236,10 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
   }
 
   // The contacts' roles over a stretch (contact_roles.h). A run's sliders slide the way its
-  // middle slips them; at rest the set's sticking contacts stick and its sliders, stuck as
-  // every contact at rest is, are not relied on, nor is a finger whose load a hand-over ramps
-  // from or to nothing, and one that moves up alone to join may touch at its end; the others
-  // are lifted.
+  // middle slips them; at rest the set's sticking contacts stick and so, as every contact at
+  // rest does, its sliders; a finger whose load a hand-over ramps from or to nothing is not
+  // relied on, and one that moves up alone to join may touch at its end; the others are
+  // lifted.
   auto rolesOf = [&](const Stretch& r) {
     ContactRoles roles{};
     const VecQ q = configuration(r, 0.5);
@@ -258,7 +258,9 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
       else if (r.set.sticks(f))
         roles[f] = ContactRole::kStick;
       else if (r.kind != Stretch::kRun)
-        roles[f] = ContactRole::kFree;  // a slider at rest: stuck, but not relied on
+        // A slider at rest is stuck: relied on beside one other tip (two sticking tips steer
+        // their squeeze), not among three (the squeeze no actuator steers).
+        roles[f] = r.set.count() <= 2 ? ContactRole::kStick : ContactRole::kFree;
       else
         roles[f] =
             data.T.col(f).dot(v) < 0.0 ? ContactRole::kSlideNegative : ContactRole::kSlidePositive;
