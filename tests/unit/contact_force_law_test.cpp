@@ -70,8 +70,11 @@ RunLog runLaw(const RbsfModel& cell, const Plan& plan, const plan::TrialDraw& dr
     sim.step(s, tau, *ws, &report);
     const ContactRoles& roles = schedule.roles(schedule.knotAt(n * h));
     log.worst_use = std::max(log.worst_use, law.contactForces().frictionUse());
+    // A tip planned to stick that was sticking and slips (one still sliding from a run before
+    // its role turned to stick is stopping, not slipping).
     for (int i = 0; i < m; ++i)
-      if (roles[i] == ContactRole::kStick && report.contacts[i].mode == ContactMode::kSlide)
+      if (roles[i] == ContactRole::kStick && report.contacts[i].mode == ContactMode::kSlide &&
+          !log.reports.empty() && log.reports.back().contacts[i].mode == ContactMode::kStick)
         log.relied_slipped = true;
     log.reports.push_back(report);
     log.roles.push_back(roles);
