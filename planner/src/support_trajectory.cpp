@@ -53,6 +53,7 @@ struct Stretch {
   ContactSet before, next;              ///< kRamp: the sets before and after it
   double duration = 0.0;
   std::size_t first_step = 0, last_step = 0;  ///< SupportRun
+  bool end = false;                           ///< the final rest
 };
 
 Eigen::VectorXd runCoordinates(const SupportStep& s) {
@@ -231,15 +232,15 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
     hold.base = last.pose;
     hold.tau_from = hold.tau_to = staticTau(hold.base, hold.set);
     hold.duration = timing.end_rest;
+    hold.end = true;
     hold.first_step = hold.last_step = path.steps.size() - 1;
     stretches.push_back(hold);
   }
 
   // The contacts' roles over a stretch (contact_roles.h). A run's sliders slide the way its
-  // middle slips them; at rest the set's sticking contacts stick and so, as every contact at
-  // rest does, its sliders; a finger whose load a hand-over ramps from or to nothing is not
-  // relied on, and one that moves up alone to join may touch at its end; the others are
-  // lifted.
+  // middle slips them; at rest the set's sticking contacts stick (its sliders: below); a
+  // finger whose load a hand-over ramps from or to nothing is not relied on, and one that
+  // moves up alone to join may touch at its end; the others are lifted.
   auto rolesOf = [&](const Stretch& r) {
     ContactRoles roles{};
     const VecQ q = configuration(r, 0.5);
@@ -258,9 +259,11 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
       else if (r.set.sticks(f))
         roles[f] = ContactRole::kStick;
       else if (r.kind != Stretch::kRun)
-        // A slider at rest is stuck: relied on beside one other tip (two sticking tips steer
-        // their squeeze), not among three (the squeeze no actuator steers).
-        roles[f] = r.set.count() <= 2 ? ContactRole::kStick : ContactRole::kFree;
+        // A slider at rest is stuck but not relied on (its run's balance may hold it near its
+        // cone's edge), except in the final rest beside one other tip, where the part must
+        // come to rest and two sticking tips steer their squeeze (among three no actuator
+        // steers it).
+        roles[f] = r.end && r.set.count() <= 2 ? ContactRole::kStick : ContactRole::kFree;
       else
         roles[f] =
             data.T.col(f).dot(v) < 0.0 ? ContactRole::kSlideNegative : ContactRole::kSlidePositive;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
 
 #include "law_support.h"
 #include "rbsf/dynamics/cell.h"
@@ -122,6 +123,55 @@ TEST(ContactForceLaw, HoldsAPartPlacedOffOnLowFrictionWithinItsFrictionUse) {
     EXPECT_LE(log.worst_use, use + 1e-6) << (part ? "part feedback" : "joints");
     EXPECT_LT(log.final_position, 0.003) << (part ? "part feedback" : "joints");
     EXPECT_LT(log.final_angle, 1.0 * M_PI / 180) << (part ? "part feedback" : "joints");
+  }
+}
+
+TEST(ContactForceLaw, ItsPredictedForcesAndAccelerationsAreTheSimulatorsForItsInput) {
+  // The law counts on the forces it predicts: for the input its QP picks, the simulator (the
+  // plant) must produce them. From rest at the default placement, for demands around the
+  // holding input (three sticking tips; two with finger 1 free or lifted), one 1 ms step
+  // gives normal forces within 1 % of the weight (the simulator's impulses also correct
+  // drift: 0.4 % here) and accelerations within 3 % of the prediction's scale (1e-6 but
+  // where a free tip pressed to its cone's edge starts to slip within the step: 2 %).
+  const RbsfModel model(defaultCell());
+  const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.4, 0.0}, 0.0);
+  ModelData data(model.numFingers());
+  model.updateContacts(q0, data);
+  const HoldingSolution hold = holdingTorques(model, q0, data);
+  const double weight = model.cell().object.mass * model.cell().gravity;
+  SimulatorSettings sim_settings;
+  const Simulator sim(model, sim_settings);
+  auto ws = std::make_unique<SimulatorWorkspace>(model.numFingers());
+  const VecQ v0 = VecQ::Zero(q0.size());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+
+  for (const char* roles : {"SSS", "FSS", "LSS"}) {
+    for (int draw = 0; draw < 8; ++draw) {
+      ContactForceQp qp(model);
+      qp.data().xi_hint = data.xi_hint;
+      ContactTick tick;
+      tick.roles = parseRoles(roles, 3, "roles");
+      tick.estimated.fill(ContactMode::kStick);
+      tick.slip_floor = VecC::Zero(3);
+      VecU demand = hold.tau;
+      for (int j = 0; j < demand.size(); ++j) demand[j] += 0.05 * std::abs(hold.tau[j]) * unit(rng);
+      VecU tau;
+      qp.solve(q0, v0, tick, demand, tau);
+      ASSERT_TRUE(tau.allFinite());
+      SimState s(q0, v0);
+      StepReport report;
+      sim.step(s, tau, *ws, &report);
+      const VecQ predicted = qp.predictedAcceleration(tau);
+      const VecQ measured = s.v / sim_settings.time_step;
+      const double scale = std::max(1.0, predicted.cwiseAbs().maxCoeff());
+      EXPECT_LT((measured - predicted).cwiseAbs().maxCoeff(), 0.03 * scale)
+          << roles << " draw " << draw << ": predicted " << predicted.transpose()
+          << ", simulated " << measured.transpose();
+      for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(report.contacts[i].f_n, qp.normalForces()[i], 0.01 * weight)
+            << roles << " draw " << draw << " finger " << i + 1;
+    }
   }
 }
 
