@@ -23,14 +23,16 @@ int run(int argc, char** argv) {
   std::string pose_text = "0.1,0.40,0";
   int trials = 256, seed = 1;
   double duration = 3.0;
-  CLI::App app{"Holding benchmark: the part held at rest on its best contact set, certified "
-               "under part feedback and joint feedback with a fixed number of trials.",
-               "rbsf_hold_bench"};
+  CLI::App app{
+      "Holding benchmark: the part held at rest on its best contact set, certified "
+      "under part feedback and joint feedback with a fixed number of trials.",
+      "rbsf_hold_bench"};
   app.footer(rbsf::tools::kExitStatusHelp);
   app.add_option("--cell", cell_path, "cell file (default cells/default.yaml)");
   app.add_option("--pose", pose_text, "the part's pose x,y,phi (default 0.1,0.40,0)");
   app.add_option("--trials", trials, "trials per law (default 256)")->check(CLI::Range(1, 100000));
-  app.add_option("--trial-seed", seed, "seed of the draws (default 1)")->check(CLI::Range(1, 1 << 30));
+  app.add_option("--trial-seed", seed, "seed of the draws (default 1)")
+      ->check(CLI::Range(1, 1 << 30));
   app.add_option("--duration", duration, "the rest [s] (default 3)")->check(CLI::Range(0.5, 600.0));
   rbsf::tools::parseCommandLine(app, argc, argv);
 
@@ -55,7 +57,8 @@ int run(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const rbsf::plan::Certificate c =
         rbsf::plan::certify(part ? model : joints_only, plan, settings);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("%-14s %d/%d held (bound %.3f), %.1f s; worst: %s\n",
                 part ? "part feedback" : "joints only", c.successes, c.trials, c.lower_bound, wall,
                 c.worst.success ? "succeeded" : c.worst.failure.c_str());
@@ -65,4 +68,6 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return rbsf::tools::toolMain("rbsf_hold_bench", argc, argv, run); }
+int main(int argc, char** argv) {
+  return rbsf::tools::toolMain("rbsf_hold_bench", argc, argv, run);
+}

@@ -65,8 +65,7 @@ FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory t
     if (!(std::isfinite(x) && x > 0.0))
       throw InputError("feedback settings: every weight, period and noise must be positive");
   if (!(s.settle_time >= 0.0 && s.horizon_tail >= 0.0 && s.damping_ratio >= 0.0 &&
-        s.integral_time >= 0.0 &&
-        s.integral_limit >= 0.0))
+        s.integral_time >= 0.0 && s.integral_limit >= 0.0))
     throw InputError(
         "feedback settings: settle_time, horizon_tail, damping_ratio, integral_time and "
         "integral_limit must be >= 0");

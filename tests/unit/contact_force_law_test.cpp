@@ -166,8 +166,8 @@ TEST(ContactForceLaw, ItsPredictedForcesAndAccelerationsAreTheSimulatorsForItsIn
       const VecQ measured = s.v / sim_settings.time_step;
       const double scale = std::max(1.0, predicted.cwiseAbs().maxCoeff());
       EXPECT_LT((measured - predicted).cwiseAbs().maxCoeff(), 0.03 * scale)
-          << roles << " draw " << draw << ": predicted " << predicted.transpose()
-          << ", simulated " << measured.transpose();
+          << roles << " draw " << draw << ": predicted " << predicted.transpose() << ", simulated "
+          << measured.transpose();
       for (int i = 0; i < 3; ++i)
         EXPECT_NEAR(report.contacts[i].f_n, qp.normalForces()[i], 0.01 * weight)
             << roles << " draw " << draw << " finger " << i + 1;

@@ -173,7 +173,7 @@ class ControlLaw {
   VecU demand_;
   VecX e_, d_;
   VecU alpha_, beta_;  ///< joint-only estimator gains (file comment)
-  VecU ej_, dej_;  ///< joint-only estimate: joint errors and their rates
+  VecU ej_, dej_;      ///< joint-only estimate: joint errors and their rates
   Eigen::Vector3d xi_ = Eigen::Vector3d::Zero();  ///< integral of the part pose error
   ReferenceSample at_, mid_;
   std::uint64_t dropped_ = 0;
