@@ -15,6 +15,7 @@
 #include <Eigen/Dense>
 
 #include "rbsf/dynamics/small_solvers.h"
+#include "test_support.h"
 
 namespace rbsf {
 namespace {
@@ -34,14 +35,7 @@ struct Problem {
   Index n() const { return g.size(); }
 };
 
-MatrixXd randomMatrix(std::mt19937& rng, Index rows, Index cols) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  MatrixXd m(rows, cols);
-  for (Index j = 0; j < cols; ++j) {
-    for (Index i = 0; i < rows; ++i) m(i, j) = u(rng);
-  }
-  return m;
-}
+using test::randomMatrix;
 
 VectorXd randomVector(std::mt19937& rng, Index n) { return randomMatrix(rng, n, 1); }
 

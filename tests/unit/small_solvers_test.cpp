@@ -14,6 +14,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
+#include "test_support.h"
+
 namespace rbsf {
 namespace {
 
@@ -23,14 +25,7 @@ using Eigen::VectorXd;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-MatrixXd randomMatrix(std::mt19937& rng, Index rows, Index cols) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  MatrixXd m(rows, cols);
-  for (Index j = 0; j < cols; ++j) {
-    for (Index i = 0; i < rows; ++i) m(i, j) = u(rng);
-  }
-  return m;
-}
+using test::randomMatrix;
 
 VectorXd randomVector(std::mt19937& rng, Index n) { return randomMatrix(rng, n, 1); }
 

@@ -77,4 +77,14 @@ inline VecQ randomVector(int n, std::mt19937& rng, double scale = 1.0) {
   return v;
 }
 
+/// \brief A rows x cols matrix of uniform entries in [-1, 1], drawn column by column.
+inline Eigen::MatrixXd randomMatrix(std::mt19937& rng, Eigen::Index rows, Eigen::Index cols) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::MatrixXd m(rows, cols);
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    for (Eigen::Index i = 0; i < rows; ++i) m(i, j) = u(rng);
+  }
+  return m;
+}
+
 }  // namespace rbsf::test
