@@ -5,24 +5,56 @@
 // draws for both. One line per law: successes, the bound, the worst trial.
 //   build/bench/rbsf_hold_bench [--cell cells/default.yaml] [--pose 0.1,0.40,0]
 //                               [--trials 256] [--trial-seed 1] [--duration 3]
+//                               [--list-failures] [--friction-use U] [--margin-reward C]
+// --friction-use, --margin-reward: the law's ContactForceSettings (contact_force_qp.h).
+// --list-failures: each failed trial's draw (mu_s, mu_k, mass, COM offset, start offset).
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/state_layout.h"
 #include "rbsf/plan/certificate.h"
+#include "rbsf/plan/plan_reference.h"
+#include "rbsf/plan/trial.h"
 #include "rbsf/planner/hold_plan.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
 
 namespace {
 
+/// Every failed trial of `settings` on `model` (the certificate's draws, run again one by
+/// one): the drawn friction, mass, COM offset and start offset.
+void listFailures(const rbsf::RbsfModel& model, const rbsf::plan::Plan& plan,
+                  const rbsf::plan::CertificateSettings& settings) {
+  namespace layout = rbsf::layout;
+  const rbsf::FeedbackSchedule schedule(model, rbsf::plan::makeReference(plan),
+                                        rbsf::plan::lawSensing(model.cell().sensing, plan),
+                                        plan.simulator);
+  for (int i = 0; i < settings.trials; ++i) {
+    const rbsf::plan::TrialDraw d = rbsf::plan::drawTrial(model.cell(), plan, settings.seed, i);
+    const rbsf::plan::TrialOutcome o =
+        rbsf::plan::runTrial(schedule, plan, d, settings.trial, false);
+    if (o.success) continue;
+    std::printf(
+        "  trial %d: mu_s %.3f mu_k %.3f mass %.2f kg, COM (%+.4f, %+.4f) m, start "
+        "(%+.4f m, %+.4f m, %+.3f deg) off; %s\n",
+        i, d.cell.friction.mu_static, d.cell.friction.mu_kinetic, d.cell.object.mass,
+        d.com_offset.x(), d.com_offset.y(), d.q0[layout::kX] - plan.q0[layout::kX],
+        d.q0[layout::kY] - plan.q0[layout::kY],
+        (d.q0[layout::kPhi] - plan.q0[layout::kPhi]) * 180 / M_PI, o.failure.c_str());
+  }
+}
+
 int run(int argc, char** argv) {
   std::string cell_path = std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml";
   std::string pose_text = "0.1,0.40,0";
   int trials = 256, seed = 1;
   double duration = 3.0;
+  bool list_failures = false;
+  rbsf::plan::CertificateSettings settings;
   CLI::App app{
       "Holding benchmark: the part held at rest on its best contact set, certified "
       "under part feedback and joint feedback with a fixed number of trials.",
@@ -34,6 +66,13 @@ int run(int argc, char** argv) {
   app.add_option("--trial-seed", seed, "seed of the draws (default 1)")
       ->check(CLI::Range(1, 1 << 30));
   app.add_option("--duration", duration, "the rest [s] (default 3)")->check(CLI::Range(0.5, 600.0));
+  app.add_flag("--list-failures", list_failures, "print each failed trial's draw");
+  app.add_option("--friction-use", settings.feedback.forces.friction_use,
+                 "the law's friction use of sticking contacts (default 0.8)")
+      ->check(CLI::Range(0.05, 1.0));
+  app.add_option("--margin-reward", settings.feedback.forces.margin_reward,
+                 "the law's reward of the smallest margin (default 0.01)")
+      ->check(CLI::Range(0.0, 100.0));
   rbsf::tools::parseCommandLine(app, argc, argv);
 
   const rbsf::Cell cell = rbsf::loadCell(cell_path);
@@ -50,7 +89,6 @@ int run(int argc, char** argv) {
   for (int i = 0; i < model.numFingers(); ++i)
     if (plan.segments.front().contacts[i] == rbsf::ContactRole::kStick) std::printf(" %d", i + 1);
   std::printf(" (the others lifted), %d trials, seed %d\n", trials, seed);
-  rbsf::plan::CertificateSettings settings;
   settings.trials = trials;
   settings.seed = static_cast<std::uint64_t>(seed);
   for (const bool part : {true, false}) {
@@ -62,6 +100,7 @@ int run(int argc, char** argv) {
     std::printf("%-14s %d/%d held (bound %.3f), %.1f s; worst: %s\n",
                 part ? "part feedback" : "joints only", c.successes, c.trials, c.lower_bound, wall,
                 c.worst.success ? "succeeded" : c.worst.failure.c_str());
+    if (list_failures) listFailures(part ? model : joints_only, plan, settings);
   }
   return 0;
 }
