@@ -8,18 +8,22 @@
 
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/rollout.h"
+#include "rbsf/dynamics/state_layout.h"
 
 namespace rbsf::planner {
 
 namespace oc = ompl::control;
 
 SimPropagator::SimPropagator(const oc::SpaceInformationPtr& si, const Simulator& simulator,
-                             const SimStateSpace& space, const DecisiveModes& rule)
+                             const SimStateSpace& space, const DecisiveModes& rule,
+                             const MotionLimits* limits)
     : oc::StatePropagator(si),
       simulator_(simulator),
       space_(space),
       m_(simulator.model().numFingers()),
       rule_(rule),
+      limited_(limits != nullptr),
+      limits_(limits != nullptr ? *limits : MotionLimits{}),
       ws_(simulator.model().numFingers()) {
   checkSettings(rule);
 }
@@ -34,7 +38,7 @@ void SimPropagator::propagate(const ompl::base::State* state, const oc::Control*
   const long n = std::lround(duration / simulator_.settings().time_step);
   const double mu = simulator_.model().cell().friction.mu_static;
   std::array<ContactMode, kMaxFingers> held = sim.mode;  // what settle_steps = 0 keeps
-  bool decisive = true;
+  bool decisive = true, slow = true;
   const bool rule = rule_.enabled;
   const long k = rollout(
       simulator_, sim, n, ws_,
@@ -44,6 +48,11 @@ void SimPropagator::propagate(const ompl::base::State* state, const oc::Control*
       },
       [&](const SimState& now, const StepReport& report, const VecU&, long step) {
         if (!now.q.allFinite() || !now.v.allFinite()) return false;  // the checker refuses it
+        if (limited_ && (std::hypot(now.v[layout::kX], now.v[layout::kY]) > limits_.part_speed ||
+                         std::abs(now.v[layout::kPhi]) > limits_.angular_speed)) {
+          slow = false;
+          return false;
+        }
         const long done = step + 1;
         if (!rule || done < rule_.settle_steps) return true;
         if (done == rule_.settle_steps) {
@@ -59,8 +68,9 @@ void SimPropagator::propagate(const ompl::base::State* state, const oc::Control*
       });
   space_.fromSim(sim, result);
   // A refused step ends where the rule broke: its state is never used.
-  static_cast<SimStateSpace::StateType*>(result)->decisive = decisive;
+  static_cast<SimStateSpace::StateType*>(result)->decisive = decisive && slow;
   indecisive_ += decisive ? 0 : 1;
+  too_fast_ += slow ? 0 : 1;
   ++propagations_;
   steps_ += static_cast<std::uint64_t>(k);
 }

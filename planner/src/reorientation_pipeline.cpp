@@ -140,6 +140,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     a.expansions = support.expansions();
     a.friction_use = support.frictionUse();
     a.paths_run = support.pathsRun();
+    a.reach = support.reach();
     if (found && !cancelled()) {
       judge(a, std::move(plan), start, false);
     } else {

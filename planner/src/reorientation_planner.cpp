@@ -131,7 +131,9 @@ PlannerSetup ReorientationPlanner::setup(const Problem& problem) const {
   auto si = std::make_shared<oc::SpaceInformation>(out.space, cspace);
   out.checker = std::make_shared<SupportValidityChecker>(si, model_, s.validity);
   si->setStateValidityChecker(out.checker);
-  out.propagator = std::make_shared<SimPropagator>(si, simulator_, *out.space, s.decisive_modes);
+  out.propagator =
+      std::make_shared<SimPropagator>(si, simulator_, *out.space, s.decisive_modes,
+                                      s.keep_motion_limits ? &cell.motion_limits : nullptr);
   si->setStatePropagator(out.propagator);
   si->setPropagationStepSize(s.steps_per_control * dt);
   si->setMinMaxControlDuration(s.min_control_steps, s.max_control_steps);
@@ -169,7 +171,8 @@ bool ReorientationPlanner::solve(const Problem& problem, plan::Plan& plan) {
       s.progress({t, propagator.propagations(), goal.bestDistance()});
     }
     const bool cancelled = s.cancel != nullptr && s.cancel->load(std::memory_order_relaxed);
-    return cancelled || t >= s.time_limit;  // the goal stops it too (StopAtGoalPlanner)
+    const bool spent = s.max_propagations > 0 && propagator.propagations() >= s.max_propagations;
+    return cancelled || spent || t >= s.time_limit;  // the goal stops it too (StopAtGoalPlanner)
   });
   setup.simple_setup->getPlanner()->solve(ptc);
   const double planning_time = elapsed();

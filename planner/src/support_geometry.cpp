@@ -48,11 +48,15 @@ bool SupportGeometry::entry(const JigPose& pose, int i, double& stroke, double& 
 }
 
 std::optional<VecQ> SupportGeometry::configuration(const JigPose& pose, const ContactSet& set,
-                                                   bool check_limits) const {
+                                                   bool check_limits, SupportRule* why) const {
   const Cell& cell = model_.cell();
+  auto fail = [why](SupportRule rule) {
+    if (why != nullptr) *why = rule;
+    return std::nullopt;
+  };
   if (check_limits && (pose.theta < cell.base.theta_min + settings_.theta_margin ||
                        pose.theta > cell.base.theta_max - settings_.theta_margin))
-    return std::nullopt;
+    return fail(SupportRule::kBaseLimit);
   const int m = model_.numFingers();
   const Pose w = pose.world();
   VecQ q(model_.configDim());
@@ -66,10 +70,10 @@ std::optional<VecQ> SupportGeometry::configuration(const JigPose& pose, const Co
       double stroke = 0.0, xi = 0.0;
       const double min_cosine =
           set.sticks(i) ? settings_.min_sticking_cosine : settings_.min_normal_cosine;
-      if (!entry(pose, i, stroke, xi, min_cosine)) return std::nullopt;
+      if (!entry(pose, i, stroke, xi, min_cosine)) return fail(SupportRule::kReach);
       if (check_limits && (stroke < f.stroke_min + settings_.stroke_margin ||
                            stroke > f.stroke_max - settings_.stroke_margin))
-        return std::nullopt;
+        return fail(SupportRule::kStroke);
       q[layout::stroke(i)] = stroke;
     } else {
       q[layout::stroke(i)] = f.stroke_min;
@@ -80,7 +84,7 @@ std::optional<VecQ> SupportGeometry::configuration(const JigPose& pose, const Co
       if (check_limits &&
           model_.shape().closestNear(tip, std::atan2(tip.y(), tip.x())).signed_distance <
               settings_.clearance)
-        return std::nullopt;
+        return fail(SupportRule::kClearance);
     }
   }
   return q;
@@ -88,12 +92,13 @@ std::optional<VecQ> SupportGeometry::configuration(const JigPose& pose, const Co
 
 Support SupportGeometry::check(const JigPose& pose, const ContactSet& set, const VecC& slip) {
   Support out;
-  const std::optional<VecQ> q = configuration(pose, set);
+  const std::optional<VecQ> q = configuration(pose, set, true, &out.refusal);
   if (!q) return out;
   out.q = *q;
   out.balance = balancer_.statics(out.q, set, data_, slip);
   out.margin = out.balance.margin;
   out.valid = out.balance.balanced && (!settings_.require_determined || out.balance.determined);
+  out.refusal = out.balance.balanced ? SupportRule::kUndetermined : SupportRule::kBalance;
   return out;
 }
 

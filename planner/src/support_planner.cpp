@@ -28,6 +28,7 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
   expansions_ = 0;
   friction_use_ = 0.0;
   paths_ = 0;
+  reach_ = SupportReach{};
   plan = plan::Plan{};
   // The cell's motion limits bound the timing's speeds (the part turns with psi and theta).
   SupportTiming timing = settings_.timing;
@@ -52,6 +53,7 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
       const SupportPath path =
           search.search(problem.start, problem.start_theta, problem.goal, settings_.cancel);
       expansions_ += path.expansions;
+      reach_.merge(path.reach);
       if (!path.found) {
         why = path.message;
         break;

@@ -69,15 +69,23 @@ bool SupportSearch::anchorFor(const JigPose& pose, const ContactSet& set, PivotA
 
 bool SupportSearch::stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
                            const PivotAnchor& anchor, SupportStep& out, bool backward) {
-  if (!blocked_.empty() && blocked_.count(key(pose, set)) != 0) return false;
-  const std::optional<VecQ> q = geometry_.configuration(pose, set);
+  if (!blocked_.empty() && blocked_.count(key(pose, set)) != 0) {
+    refusal_ = SupportRule::kBlocked;
+    return false;
+  }
+  const std::optional<VecQ> q = geometry_.configuration(pose, set, true, &refusal_);
   if (!q) return false;
   const VecC slip = set == from.set ? geometry_.slipDirections(from.q, *q) : VecC();
   const Support s = geometry_.check(pose, set, slip);
-  if (!s.valid) return false;
-  if (set == from.set && from.rest && !backward && settings_.support.require_breakaway &&
-      !geometry_.breaksAway(from.q, set, slip))
+  if (!s.valid) {
+    refusal_ = s.refusal;
     return false;
+  }
+  if (set == from.set && from.rest && !backward && settings_.support.require_breakaway &&
+      !geometry_.breaksAway(from.q, set, slip)) {
+    refusal_ = SupportRule::kBreakaway;
+    return false;
+  }
   out.pose = pose;
   out.set = set;
   out.anchor = anchor;
@@ -207,6 +215,28 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
   };
   Tree trees[2];
   const JigPose start_pose = JigPose::fromWorld(start, start_theta);
+  SupportReach& reach = result.reach;
+  reach.measured = true;
+  reach.psi_min = reach.psi_max = start_pose.psi;
+  reach.phi_min = reach.phi_max = start.phi;
+  reach.closest = start;
+  reach.closest_score = INFINITY;
+  // The start tree's reach: angle ranges and the pose closest to the goal.
+  auto noteReached = [&](const SupportStep& s) {
+    const Pose w = s.pose.world();
+    reach.psi_min = std::min(reach.psi_min, s.pose.psi);
+    reach.psi_max = std::max(reach.psi_max, s.pose.psi);
+    reach.phi_min = std::min(reach.phi_min, w.phi);
+    reach.phi_max = std::max(reach.phi_max, w.phi);
+    ++reach.poses;
+    const double score = poseHeuristic(s.pose);
+    if (score < reach.closest_score) {
+      reach.closest_score = score;
+      reach.closest = w;
+      reach.closest_position = std::hypot(goal.x - w.x, goal.y - w.y);
+      reach.closest_angle = std::remainder(goal.phi - w.phi, 2.0 * M_PI);
+    }
+  };
   auto treeHeuristic = [&](int t, const SupportStep& s) {
     return t == 0 ? heuristic(s) : distance(s.pose, start_pose, ls);
   };
@@ -220,6 +250,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     tree.nodes.push_back(Node{s, g, parent});
     const int id = static_cast<int>(tree.nodes.size()) - 1;
     tree.open.emplace(g + settings_.heuristic_weight * treeHeuristic(t, s), id);
+    if (t == 0) noteReached(s);
     if (s.set.phase() == Phase::kU) tree.sliding[meetKey(s)].push_back(id);
     if (s.set.phase() == Phase::kP) tree.pivots[pivotKey(s, 0, 0, s.set.pivot())].push_back(id);
   };
@@ -258,16 +289,40 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     return distance(from.pose, to.pose, ls) *
            (1.0 + settings_.margin_weight / (std::min(from.margin, to.margin) + 0.01));
   };
-  // The path: the forward chain to `f`, `middle`, then the backward chain from `b` (if any).
+  // A path: the forward chain to `f`, `middle`, then the backward chain from `b` (if any).
+  // The first one found sets how long the search goes on (search_on); of those found, the
+  // one with the fewest phase runs, then the shortest, is kept.
+  long stop_at = 0;
+  int best_runs = 0;
+  double best_length = 0.0;
+  std::vector<SupportStep> candidate;
   auto finish = [&](int f, const std::vector<SupportStep>& middle, int b) {
+    candidate.clear();
     for (int n = f; n >= 0; n = trees[0].nodes[n].parent)
-      result.steps.push_back(trees[0].nodes[n].step);
-    std::reverse(result.steps.begin(), result.steps.end());
-    result.steps.insert(result.steps.end(), middle.begin(), middle.end());
+      candidate.push_back(trees[0].nodes[n].step);
+    std::reverse(candidate.begin(), candidate.end());
+    candidate.insert(candidate.end(), middle.begin(), middle.end());
     for (int n = b >= 0 ? trees[1].nodes[b].parent : -1; n >= 0; n = trees[1].nodes[n].parent)
-      result.steps.push_back(trees[1].nodes[n].step);
+      candidate.push_back(trees[1].nodes[n].step);
+    int runs = 1;
+    double length = 0.0;
+    for (std::size_t k = 1; k < candidate.size(); ++k) {
+      runs += candidate[k].set != candidate[k - 1].set ? 1 : 0;
+      length += distance(candidate[k - 1].pose, candidate[k].pose, ls);
+    }
+    if (!result.found) {
+      stop_at = result.expansions +
+                static_cast<long>(
+                    std::ceil(settings_.search_on * static_cast<double>(result.expansions)));
+    } else if (runs > best_runs || (runs == best_runs && length >= best_length)) {
+      return;
+    }
     result.found = true;
+    result.steps = candidate;
+    best_runs = runs;
+    best_length = length;
   };
+
   // A new sliding node of tree t meets the other tree's sliding nodes in its cell.
   auto meet = [&](int t, int id) {
     const SupportStep& s = trees[t].nodes[id].step;
@@ -389,6 +444,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     tree.open.pop();
     const Node node = tree.nodes[id];
     if (tree.best[key(node.step.pose, node.step.set)] < node.g - 1e-12) continue;
+    if (result.found && result.expansions >= stop_at) break;
     if (++result.expansions > settings_.max_expansions) break;
     if ((result.expansions & 255) == 0) {
       if (cancel != nullptr && cancel->load()) {
@@ -396,6 +452,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
         return result;
       }
       if (std::chrono::duration<double>(Clock::now() - started).count() > settings_.time_limit) {
+        if (result.found) break;
         result.message = "no support path within the time limit";
         return result;
       }
@@ -417,27 +474,33 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
         double psi, th, l;
         if (pivotTarget(s, psi, th, l)) tail = straightPivot(s, psi, th, l);
       }
-      if (!tail.empty()) {
-        finish(id, tail, -1);
-        return result;
-      }
+      if (!tail.empty()) finish(id, tail, -1);
     }
 
     SupportStep next;
-    bool met = false;
     auto add = [&](double g) {
       const std::size_t before = tree.nodes.size();
       push(t, next, g, id);
       if (tree.nodes.size() <= before) return;
       const int added = static_cast<int>(tree.nodes.size()) - 1;
-      if (next.set.phase() == Phase::kU ? meet(t, added)
-                                        : next.set.phase() == Phase::kP && meetPivot(t, added))
-        met = true;
+      if (next.set.phase() == Phase::kU)
+        meet(t, added);
+      else if (next.set.phase() == Phase::kP)
+        meetPivot(t, added);
+    };
+    // A refused start-tree move that would have gone beyond the closest pose counts
+    // against the rule it broke (the reachability answer).
+    auto refused = [&](const JigPose& pose) {
+      if (t == 0 && poseHeuristic(pose) < reach.closest_score)
+        ++reach.refused[static_cast<int>(refusal_)];
     };
     auto tryMove = [&](const JigPose& pose, const ContactSet& set, const PivotAnchor& anchor) {
       SupportStep mid;
-      if (met || !stepTo(s, lerp(s.pose, pose, 0.5), set, anchor, mid, t == 1)) return;
-      if (!stepTo(mid, pose, set, anchor, next, t == 1)) return;
+      if (!stepTo(s, lerp(s.pose, pose, 0.5), set, anchor, mid, t == 1) ||
+          !stepTo(mid, pose, set, anchor, next, t == 1)) {
+        refused(pose);
+        return;
+      }
       add(node.g + moveCost(s, next));
     };
     // In the goal tree a switch away from s starts (in time) the run from s towards the
@@ -450,7 +513,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     }
     auto trySwitch = [&](const ContactSet& set) {
       PivotAnchor anchor;
-      if (met || !can_leave || !anchorFor(s.pose, set, anchor)) return;
+      if (!can_leave || !anchorFor(s.pose, set, anchor)) return;
       if (set.pivot() >= 0 && set.pivot() == s.set.pivot()) anchor = s.anchor;
       if (stepTo(s, s.pose, set, anchor, next)) add(node.g + settings_.switch_cost);
     };
@@ -504,9 +567,8 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
       if (!s.set.touches(j) && s.set.sticking != 0)
         trySwitch(ContactSet{touching | bit, s.set.sticking | bit});  // placed to stick
     }
-    if (met) return result;
   }
-  if (result.message.empty())
+  if (!result.found && result.message.empty())
     result.message =
         result.expansions > settings_.max_expansions
             ? "no support path within " + std::to_string(settings_.max_expansions) + " expansions"

@@ -425,6 +425,34 @@ TEST(PlanReorientation, ASupportPathWhoseRunDropsThePartIsApproximateAndSaysSo) 
   EXPECT_GT(j["certificate"]["holding"]["longest_free"].get<double>(), 0.1);
 }
 
+TEST(PlanReorientation, TheSameBudgetGivesTheSameFilesOnAnIdleAndOnALoadedMachine) {
+  // Budgets, not the clock, end these searches: the support planner's expansions and one
+  // kinodynamic search's propagations (fewer than it needs to reach the goal). Each command
+  // runs on the idle machine and again beside a CPU-bound process; the files are the same
+  // bytes.
+  const std::string support = kPlan + " --cell " + kCells +
+                              "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,10deg --planner "
+                              "support --time-limit 3600 --max-expansions 3000 --quiet --trials 2 "
+                              "--reproducible";
+  const std::string kinodynamic = kPlan + " --cell " + kCells +
+                                  "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg "
+                                  "--planner KPIECE1 --attempts 1 --seed 3 --max-propagations "
+                                  "1500 --time-limit 3600 --no-optimize --quiet --trials 2 "
+                                  "--reproducible";
+  for (const std::string& command : {support, kinodynamic}) {
+    const std::string idle = writeTemp("budget_idle.json", "");
+    const std::string loaded = writeTemp("budget_loaded.json", "");
+    const Result a = run(command + " --out " + idle);
+    const Result b = run("( sh -c 'while :; do :; done' & burner=$!; " + command + " --out " +
+                         loaded + "; status=$?; kill $burner; exit $status )");
+    ASSERT_TRUE(a.status == 3 || a.status == 4) << a.out << a.err;
+    EXPECT_EQ(a.status, b.status) << b.out << b.err;
+    const std::string first = slurp(idle);
+    ASSERT_FALSE(first.empty());
+    EXPECT_TRUE(first == slurp(loaded)) << command;
+  }
+}
+
 TEST(PlanReorientation, SupportPlannerWritesASlowJointFedBackPlanAndItsVerdict) {
   const std::string out = writeTemp("support.json", "");
   const Result r = run(kPlan + " --cell " + kCells +
@@ -537,14 +565,15 @@ TEST(PlanReorientation, OptimizeToleranceReachesIpopt) {
 }
 
 TEST(PlanReorientation, NotCertifiedFirstSolveIsRetriedAndEachSolveIsNamed) {
-  // The default 90 deg problem (seed 1): the first refinement is not certified, so the
-  // optimiser runs again with a minimum slip rate; whichever plan is written, every solve
-  // not chosen is named in the message with its certificate or its failure.
-  const std::string out = writeTemp("plan90_refined.json", "");
+  // A 15 deg problem (seed 1, a budget in propagations): the first refinement is not
+  // certified, so the optimiser runs again with a minimum slip rate; whichever plan is
+  // written, every solve not chosen is named in the message with its certificate or its
+  // failure.
+  const std::string out = writeTemp("plan15_refined.json", "");
   const Result r = run(kPlan + " --cell " + kCells +
-                       "default.yaml --start 0.1,0.40,0 --goal=-0.1,0.40,-90deg --seed 1 --planner "
-                       "KPIECE1 --attempts 1"
-                       " --time-limit 120 --trials 4 --quiet --out " +
+                       "default.yaml --start 0.1,0.40,0 --goal=-0.1,0.40,-15deg --seed 1 --planner "
+                       "KPIECE1 --attempts 1 --max-propagations 200000"
+                       " --time-limit 3600 --trials 4 --quiet --out " +
                        out);
   ASSERT_TRUE(r.status == 0 || r.status == 4) << r.err;
   const auto plan = nlohmann::json::parse(slurp(out));

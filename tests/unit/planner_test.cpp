@@ -4,9 +4,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/errors.h"
@@ -102,6 +104,41 @@ TEST_F(PlannerTest, SmallProblemSolvedExactlyAndReproducedByResimulation) {
   const VecQ& qf = qs.back();
   EXPECT_LE(std::hypot(qf[layout::kX] - goal.x, qf[layout::kY] - goal.y), 0.01);
   EXPECT_LE(std::abs(qf[layout::kPhi] - goal.phi), 2.0 * M_PI / 180.0 + 1e-12);
+}
+
+/// The largest part speed |(x', y')| and angular speed |phi'| of the plan's motion, every
+/// simulator step (an independent re-simulation of its segments).
+std::pair<double, double> peakSpeeds(const RbsfModel& model, const PlannerSettings& s, Plan plan) {
+  const Simulator sim(model, s.simulator);
+  double linear = 0.0, angular = 0.0;
+  for (const PlanSample& p : simulateSegments(sim, plan.q0, plan.segments, 1)) {
+    linear = std::max(linear, std::hypot(p.v[layout::kX], p.v[layout::kY]));
+    angular = std::max(angular, std::abs(p.v[layout::kPhi]));
+  }
+  return {linear, angular};
+}
+
+TEST_F(PlannerTest, EveryStateOfAPlanKeepsTheMotionLimits) {
+  // A budget in propagations (the same plan on any machine). Every simulator step of the
+  // plan found is within the cell's motion limits; the same search without the rule finds
+  // a throw, so the rule, not the problem, keeps the plan slow.
+  const MotionLimits& limits = model.cell().motion_limits;
+  PlannerSettings s = testSettings(7);
+  s.time_limit = 3600.0;
+  s.max_propagations = 20000;
+  Plan slow;
+  ASSERT_TRUE(ReorientationPlanner(model, s).solve(smallProblem(), slow));
+  ASSERT_FALSE(slow.segments.empty());
+  const auto [linear, angular] = peakSpeeds(model, s, slow);
+  EXPECT_LE(linear, limits.part_speed);
+  EXPECT_LE(angular, limits.angular_speed);
+
+  s.keep_motion_limits = false;
+  Plan fast;
+  ASSERT_TRUE(ReorientationPlanner(model, s).solve(smallProblem(), fast));
+  const auto [fast_linear, fast_angular] = peakSpeeds(model, s, fast);
+  EXPECT_TRUE(fast_linear > limits.part_speed || fast_angular > limits.angular_speed)
+      << fast_linear << " m/s, " << fast_angular << " rad/s";
 }
 
 TEST_F(PlannerTest, GoalIsReachedOnlyBySupportedStates) {

@@ -65,6 +65,88 @@ TEST(SupportGeometry, WorldAndJigPosesRoundTripAndAPivotKeepsItsTipOnItsPoint) {
   }
 }
 
+TEST(SupportGeometry, ARefusedSupportNamesTheFirstRuleItBreaks) {
+  // Each pose breaks one rule, checked against the cell's own numbers: the base beyond its
+  // limit, the part lifted above the strokes' reach, the part beside every finger's line,
+  // and at the start only forces refuse a set.
+  const RbsfModel& model = defaultModel();
+  const Cell& cell = model.cell();
+  SupportGeometry geometry(model, searchSettings().support);
+  const ContactSet all{0b111u, 0b111u};
+  SupportRule why = SupportRule::kBlocked;
+  JigPose beyond = JigPose::fromWorld(kStart, 0.0);
+  beyond.theta = cell.base.theta_max + 0.01;  // the part on the base as at the start
+  EXPECT_FALSE(geometry.configuration(beyond, all, true, &why).has_value());
+  EXPECT_EQ(why, SupportRule::kBaseLimit);
+  EXPECT_TRUE(geometry.configuration(beyond, all, false).has_value());  // only the limit
+
+  JigPose high = JigPose::fromWorld(kStart, 0.0);
+  high.Y += cell.fingers[0].stroke_max;  // every tip would have to reach past its stroke
+  EXPECT_FALSE(geometry.configuration(high, all, true, &why).has_value());
+  EXPECT_EQ(why, SupportRule::kStroke);
+  const Support high_support = geometry.check(high, all);
+  EXPECT_FALSE(high_support.valid);
+  EXPECT_EQ(high_support.refusal, SupportRule::kStroke);
+
+  JigPose aside = JigPose::fromWorld(kStart, 0.0);
+  aside.X += 10.0;  // no finger's line meets the part
+  EXPECT_FALSE(geometry.configuration(aside, all, true, &why).has_value());
+  EXPECT_EQ(why, SupportRule::kReach);
+
+  // At the start every finger's line meets the part within its stroke: a set is refused
+  // only by its forces, and some set holds the part.
+  int valid = 0;
+  for (std::uint32_t touch = 1; touch < 8; ++touch)
+    for (std::uint32_t stick = touch;; stick = (stick - 1) & touch) {
+      const Support sup = geometry.check(JigPose::fromWorld(kStart, 0.0), ContactSet{touch, stick});
+      if (sup.valid)
+        ++valid;
+      else
+        EXPECT_TRUE(sup.refusal == SupportRule::kBalance ||
+                    sup.refusal == SupportRule::kUndetermined)
+            << touch << " " << stick << " " << supportRuleText(sup.refusal);
+      if (stick == 0) break;
+    }
+  EXPECT_GT(valid, 0);
+}
+
+TEST(SupportSearch, ASearchedOutTurnSaysWhatItReachedAndWhatStoppedIt) {
+  // Turning the default part over is out of this cell's slow reach (docs/notes): the search
+  // ends without a path within a budget, and its reach is consistent with the problem: the
+  // start among the angles reached, the closest pose nearer the goal than the start, its
+  // distances those of the goal, and the refused moves counted.
+  const RbsfModel& model = defaultModel();
+  SupportSearchSettings s = searchSettings();
+  s.max_expansions = 6000;
+  s.time_limit = 3600.0;
+  SupportSearch search(model, s);
+  const Pose over{0.1, 0.40, M_PI};
+  const SupportPath path = search.search(kStart, 0.0, over);
+  ASSERT_FALSE(path.found);
+  const SupportReach& r = path.reach;
+  ASSERT_TRUE(r.measured);
+  EXPECT_GT(r.poses, 100);
+  EXPECT_LE(r.psi_min, 0.0);
+  EXPECT_GE(r.psi_max, 0.0);
+  EXPECT_LE(r.phi_min, 0.0);
+  EXPECT_GE(r.phi_max, 0.0);
+  EXPECT_LT(r.psi_max - r.psi_min, 2.0 * M_PI);
+  EXPECT_GE(r.closest.phi, r.phi_min - 1e-12);
+  EXPECT_LE(r.closest.phi, r.phi_max + 1e-12);
+  EXPECT_NEAR(r.closest_position, std::hypot(over.x - r.closest.x, over.y - r.closest.y), 1e-12);
+  EXPECT_NEAR(std::abs(r.closest_angle),
+              std::abs(std::remainder(over.phi - r.closest.phi, 2 * M_PI)), 1e-12);
+  EXPECT_LT(std::abs(r.closest_angle), M_PI - 0.2);  // it got somewhere
+  long refused = 0;
+  for (long n : r.refused) refused += n;
+  EXPECT_GT(refused, 0);
+  EXPECT_GT(r.refused[static_cast<int>(r.stoppedBy())], 0);
+  EXPECT_EQ(r.refused[static_cast<int>(SupportRule::kBlocked)], 0);  // nothing blocked
+  const std::string text = r.text();
+  EXPECT_NE(text.find("reached part angles"), std::string::npos) << text;
+  EXPECT_NE(text.find(supportRuleText(r.stoppedBy())), std::string::npos) << text;
+}
+
 TEST(SupportSearch, APathIsAChainOfValidSupportsEndingOnTheGoal) {
   const RbsfModel& model = defaultModel();
   const SupportSearchSettings s = searchSettings();

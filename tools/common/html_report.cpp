@@ -116,7 +116,11 @@ std::string HtmlReport::render() const {
   s += "<table>\n";
   for (const auto& [key, value] : summary_)
     s += "<tr><td>" + escapeXml(key) + "</td><td>" + escapeXml(value) + "</td></tr>\n";
-  s += "</table>\n<p class=\"legend\">Phases: ";
+  s += "</table>\n";
+  for (const ReportSection& sec : sections_)
+    s += "<div id=\"" + escapeXml(sec.id) + "\">\n<h2>" + escapeXml(sec.title) + "</h2>\n<p>" +
+         escapeXml(sec.text) + "</p>\n</div>\n";
+  s += "<p class=\"legend\">Phases: ";
   for (const Phase p : {Phase::kC, Phase::kP, Phase::kU, Phase::kUnsupported})
     s += std::string("<span style=\"background: ") + phaseColor(p) + "\">" +
          escapeXml(phaseDescription(p)) + "</span>";

@@ -65,7 +65,8 @@ std::vector<TrajectorySample> PlanOutputs::frames(const RbsfModel& model, const 
   return {f};
 }
 
-void PlanOutputs::write(const RbsfModel& model, const plan::Plan& plan) const {
+void PlanOutputs::write(const RbsfModel& model, const plan::Plan& plan,
+                        const std::vector<ReportSection>& sections) const {
   plan::PlanFileOptions file;
   file.wall_clock = !o_.reproducible;
   std::vector<std::pair<std::string, std::string>> texts;  // path, text: all formatted first
@@ -111,9 +112,9 @@ void PlanOutputs::write(const RbsfModel& model, const plan::Plan& plan) const {
         verdict = {true, false, "not certified: no closed-loop trials were run",
                    "Without the evidence of closed-loop trials this plan may not run on a cell."};
       }
-      texts.emplace_back(
-          o_.report,
-          HtmlReport(model, frames(model, plan), a, std::move(rows), std::move(verdict)).render());
+      HtmlReport report(model, frames(model, plan), a, std::move(rows), std::move(verdict));
+      for (const ReportSection& sec : sections) report.addSection(sec);
+      texts.emplace_back(o_.report, report.render());
     }
   }
   const char* what[] = {"--out", "--csv", "--svg", "--report"};

@@ -15,6 +15,7 @@
 
 #include "rbsf/dynamics/model.h"
 #include "rbsf/plan/plan.h"
+#include "rbsf/tools/html_report.h"
 #include "rbsf/tools/trajectory_writer.h"
 
 namespace rbsf::tools {
@@ -42,7 +43,9 @@ class PlanOutputs {
 
   /// \brief Format every requested file, then write each atomically.
   /// \throws std::runtime_error for a NaN in the plan, InputError for an I/O failure.
-  void write(const RbsfModel& model, const plan::Plan& plan) const;
+  ///        `sections` go into the report below its summary.
+  void write(const RbsfModel& model, const plan::Plan& plan,
+             const std::vector<ReportSection>& sections = {}) const;
 
   /// \brief The plan's samples as drawn (the start q0 alone when the plan has none).
   static std::vector<TrajectorySample> frames(const RbsfModel& model, const plan::Plan& plan);

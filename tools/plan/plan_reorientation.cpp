@@ -45,7 +45,7 @@ struct Options {
       start_theta = "0", planner = "auto", attempts = "0", time_limit = "30", seed = "1", out, csv,
       svg, report, svg_still = "0", knots = "100", optimize_time_limit = "30",
       optimize_iterations = "500", optimize_tolerance = "1e-6", goal_angle = "nearest",
-      trial_seed = "1", friction_use, support_lattice, max_expansions;
+      trial_seed = "1", friction_use, support_lattice, max_expansions, max_propagations;
   CertificateOptions certificate;
   bool quiet = false, no_optimize = false, reproducible = false, no_decisive_modes = false;
 };
@@ -201,6 +201,10 @@ int run(int argc, char** argv) {
                  "support planner: at most this many expansions over all its searches, a "
                  "budget that gives the same plan on any machine where the time limit does not "
                  "bind first (default: none)");
+  app.add_option("--max-propagations", o.max_propagations,
+                 "kinodynamic planner: at most this many propagations per search, a budget that "
+                 "gives the same plan on any machine where the time limit does not bind first "
+                 "(default: none)");
   app.add_option("--support-lattice", o.support_lattice,
                  "support planner: the search's angle and position steps (default " +
                      defaultLattice() + "; finer lattices find more paths and take longer)");
@@ -244,6 +248,9 @@ int run(int argc, char** argv) {
   if (!o.max_expansions.empty())
     pipeline.support.max_expansions =
         parseInteger(o.max_expansions, "--max-expansions", 1, 1000000000);
+  if (!o.max_propagations.empty())
+    settings.max_propagations = static_cast<std::uint64_t>(
+        parseInteger(o.max_propagations, "--max-propagations", 1, 1000000000000LL));
   planner::Problem problem;
   problem.start = parsePose(o.start, "--start");
   problem.goal = parsePose(o.goal, "--goal");
@@ -321,6 +328,19 @@ int run(int argc, char** argv) {
   plan::Plan& plan = result.plan;
   const bool found = result.chosen >= 0;
   const std::string method = found ? result.attempts[result.chosen].method : "";
+  // A support search that found nothing answers what the cell allows: what it reached and
+  // the rule that refused the moves beyond (stderr, and a section of the report).
+  std::vector<ReportSection> sections;
+  for (const planner::PipelineAttempt& a : result.attempts)
+    if (a.method == "support" && !a.found && a.reach.measured && a.note != "cancelled") {
+      const std::string reach = a.reach.text();
+      std::fprintf(stderr, "plan-reorientation: no support path; the search %s\n", reach.c_str());
+      sections.push_back(
+          {"reach", "What the support planner reached",
+           "The support search found no path (" + a.note + "). It " + reach +
+               ". The rule that refused most of the moves beyond the closest pose: " +
+               planner::supportRuleText(a.reach.stoppedBy()) + "."});
+    }
   if (found && result.attempts.size() > 1)
     std::printf("chosen: attempt %d of %zu (%s%s), %s\n", result.chosen + 1, result.attempts.size(),
                 method.c_str(),
@@ -333,7 +353,7 @@ int run(int argc, char** argv) {
     case planner::PipelineStatus::kCancelled:
       if (found) {
         plan.certificate = {};
-        outputs.write(model, plan);
+        outputs.write(model, plan, sections);
         std::printf("interrupted: the best plan so far %s%s, not certified\n",
                     endText(plan, problem).c_str(), outputs.any() ? ", written" : "");
       } else {
@@ -341,10 +361,10 @@ int run(int argc, char** argv) {
       }
       return InterruptFlag::exitStatus();
     case planner::PipelineStatus::kCertified:
-      outputs.write(model, plan);
+      outputs.write(model, plan, sections);
       return 0;
     case planner::PipelineStatus::kNotCertified:
-      outputs.write(model, plan);
+      outputs.write(model, plan, sections);
       std::fprintf(stderr, "plan-reorientation: the plan written is %s\n",
                    plan::verdictText(plan.certificate).c_str());
       return kExitNotCertified;
@@ -359,10 +379,17 @@ int run(int argc, char** argv) {
     case planner::PipelineStatus::kApproximate:
       break;
   }
-  outputs.write(model, plan);
+  outputs.write(model, plan, sections);
   // The support path was found but its closed-loop run missed the goal; a kinodynamic
   // search ended at its closest approach.
-  std::printf("no exact plan within %.3g s: the %s %s%s\n", settings.time_limit,
+  // What ended the search: the time limit, the budget, or (support) the paths it had.
+  char within[64] = "";
+  if (result.wall_time >= 0.99 * settings.time_limit)
+    std::snprintf(within, sizeof within, " within %.3g s", settings.time_limit);
+  else if (method != "support" && settings.max_propagations > 0)
+    std::snprintf(within, sizeof within, " within %llu propagations",
+                  static_cast<unsigned long long>(settings.max_propagations));
+  std::printf("no exact plan%s: the %s %s%s\n", within,
               method == "support" ? "support path's closed-loop run" : "closest plan",
               endText(plan, problem).c_str(), outputs.any() ? ", approximate plan written" : "");
   return kExitTimeLimit;

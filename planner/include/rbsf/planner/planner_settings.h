@@ -62,6 +62,9 @@ struct Progress {
 struct PlannerSettings {
   std::string planner = "KPIECE1";
   double time_limit = 30.0;  ///< [s]
+  /// \brief Propagations at most (0: no bound). A budget in propagations gives the same plan
+  ///        on any machine, under any load, where the time limit does not bind first.
+  std::uint64_t max_propagations = 0;
   std::uint32_t seed = 1;
   double position_tolerance = 0.01;           ///< [m]
   double angle_tolerance = 2.0 * M_PI / 180;  ///< [rad]
@@ -75,6 +78,9 @@ struct PlannerSettings {
   SpeedBounds speed;
   ValiditySettings validity;
   DecisiveModes decisive_modes;  ///< propagation steps a tracking cell repeats (propagator.h)
+  /// \brief Every propagated state keeps the cell's motion limits (propagator.h): the plans
+  ///        are slow or there is none. false: only SpeedBounds (a throw may be found).
+  bool keep_motion_limits = true;
   SamplerSettings sampler;
   std::function<void(const Progress&)> progress;  ///< called about once per second
   /// \brief When set and it becomes true (another thread, a signal handler), the search

@@ -21,11 +21,18 @@
 ///   - every sticking contact keeps |f_t| <= cone_margin mu_s f_n.
 /// A step that breaks either marks its result state (StateType::decisive = false), which
 /// the validity checker refuses, so OMPL's propagateWhileValid ends the control before it.
+///
+/// Motion limits (when given, as the planner does by default): a heavy part is handled
+/// slowly, so a propagation step counts only if at every simulator step the part's speed
+/// |(x', y')| is at most MotionLimits::part_speed and |phi'| at most angular_speed. A step
+/// that breaks them ends there and is refused the same way, so every state of a plan built
+/// from counted steps is within the limits.
 
 #include <cstdint>
 
 #include <ompl/control/StatePropagator.h>
 
+#include "rbsf/dynamics/motion_limits.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/state_space.h"
@@ -37,7 +44,8 @@ class SimPropagator : public ompl::control::StatePropagator {
  public:
   /// \throws InputError for settle_steps < 0 or a cone_margin outside (0, 1].
   SimPropagator(const ompl::control::SpaceInformationPtr& si, const Simulator& simulator,
-                const SimStateSpace& space, const DecisiveModes& rule = {});
+                const SimStateSpace& space, const DecisiveModes& rule = {},
+                const MotionLimits* limits = nullptr);
 
   void propagate(const ompl::base::State* state, const ompl::control::Control* control,
                  double duration, ompl::base::State* result) const override;
@@ -49,16 +57,21 @@ class SimPropagator : public ompl::control::StatePropagator {
   std::uint64_t steps() const { return steps_; }
   /// \brief Number of propagation steps refused by the decisive-modes rule so far.
   std::uint64_t indecisive() const { return indecisive_; }
+  /// \brief Number of propagation steps refused for breaking the motion limits so far.
+  std::uint64_t tooFast() const { return too_fast_; }
 
  private:
   const Simulator& simulator_;
   const SimStateSpace& space_;
   int m_;
   DecisiveModes rule_;
+  bool limited_;
+  MotionLimits limits_;
   mutable SimulatorWorkspace ws_;
   mutable std::uint64_t propagations_ = 0;
   mutable std::uint64_t steps_ = 0;
   mutable std::uint64_t indecisive_ = 0;
+  mutable std::uint64_t too_fast_ = 0;
 };
 
 }  // namespace rbsf::planner

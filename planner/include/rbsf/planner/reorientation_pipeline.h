@@ -62,6 +62,7 @@ struct PipelineAttempt {
   long expansions = 0;            ///< the support search's expansions, every margin
   double friction_use = 0.0;      ///< the support path's friction use (support_planner.h)
   int paths_run = 0;              ///< support paths found and run (support_planner.h)
+  SupportReach reach;             ///< what the support searches reached (support_reach.h)
   std::string phases;             ///< Plan::phaseSequence() of the attempt's plan
   plan::Certificate certificate;  ///< of the attempt's plan (ran false when none)
   std::string note;               ///< why the search found nothing, or the refinement's reason

@@ -33,7 +33,7 @@ class SimStateSpace : public ompl::base::RealVectorStateSpace {
    public:
     SimState* sim = nullptr;  ///< owned; allocated with the state
     /// \brief false: the propagation step into this state broke the decisive-modes rule
-    ///        (propagator.h); the validity checker refuses it.
+    ///        or the motion limits (propagator.h); the validity checker refuses it.
     bool decisive = true;
   };
 

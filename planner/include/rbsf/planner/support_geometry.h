@@ -23,6 +23,7 @@
 #include "rbsf/dynamics/contact_balance.h"
 #include "rbsf/dynamics/model.h"
 #include "rbsf/dynamics/placement.h"
+#include "rbsf/planner/support_reach.h"
 
 namespace rbsf::planner {
 
@@ -66,6 +67,7 @@ struct Support {
   double margin = 0.0;  ///< the balance margin when the geometry is valid
   VecQ q;               ///< the configuration (state_layout.h)
   ContactBalance balance;
+  SupportRule refusal = SupportRule::kBalance;  ///< the first rule broken when not valid
 };
 
 /// \brief Builds and checks supports; one per thread (holds a ModelData).
@@ -85,8 +87,9 @@ class SupportGeometry {
   /// \brief The configuration of `set` at `pose` (no balance check); nothing when the
   ///        geometry is invalid. `check_limits` false: only a touching finger whose line
   ///        misses the part fails (the margins are the search's, not the motion's).
+  ///        On failure `why`, when given, gets the first rule broken (support_reach.h).
   std::optional<VecQ> configuration(const JigPose& pose, const ContactSet& set,
-                                    bool check_limits = true) const;
+                                    bool check_limits = true, SupportRule* why = nullptr) const;
 
   /// \brief Configuration and verdict; `slip` (may be empty) the planned slip direction of
   ///        each contact (contact_balance.h), from slipDirections().

@@ -79,6 +79,9 @@ class SupportPlanner {
   double frictionUse() const { return friction_use_; }
   /// \brief Paths found and run by the last solve(), every attempt.
   int pathsRun() const { return paths_; }
+  /// \brief What the last solve()'s searches reached, merged (support_reach.h): the answer
+  ///        to give when none found a path.
+  const SupportReach& reach() const { return reach_; }
   const SupportPlannerSettings& settings() const { return settings_; }
 
  private:
@@ -88,6 +91,7 @@ class SupportPlanner {
   long expansions_ = 0;
   double friction_use_ = 0.0;
   int paths_ = 0;
+  SupportReach reach_;
 };
 
 }  // namespace rbsf::planner

@@ -28,7 +28,10 @@
 /// pivot, a hand-over of the stick and a pivot (a bridge: the boundary point the second
 /// finger must hold fixes the part angle of the hand-over; checked every step), or when a
 /// start-tree state reaches the goal by a straight slide or by the pivot that puts the part
-/// on it (the anchor fixes the stroke and the base angle in closed form).
+/// on it (the anchor fixes the stroke and the base angle in closed form). A path found is a
+/// candidate: the search goes on for `search_on` times the expansions the first took, and
+/// keeps the path with the fewest phase runs (contact sets in a row), then the shortest, as
+/// a cell engineer would (every run starts and ends at rest, so each costs time and risk).
 ///
 /// **Breakaway.** Every run rests at its ends, so its sliders start out stuck: a run with
 /// sliding contacts is entered only where they break away first
@@ -76,6 +79,9 @@ struct SupportSearchSettings {
   double heuristic_weight = 2.0;    ///< weighted A* (>= 1)
   double goal_connect = 0.6;        ///< try the straight slide below this heuristic
   double goal_theta_step = 0.0873;  ///< [rad] (5 deg)
+  /// \brief After the first path, search on for this many times the expansions it took,
+  ///        keeping the path with the fewest phase runs, then the shortest (0: the first).
+  double search_on = 1.0;
   long max_expansions = 400000;
   double time_limit = 30.0;  ///< wall time [s]
   SupportSettings support;
@@ -87,6 +93,7 @@ struct SupportPath {
   std::vector<SupportStep> steps;  ///< start to goal
   long expansions = 0;
   std::string message;  ///< why nothing was found
+  SupportReach reach;   ///< what the start tree reached (support_reach.h)
 };
 
 /// \brief The search of the file comment; one per thread.
@@ -139,6 +146,7 @@ class SupportSearch {
   ///        equal, else a switch at rest); false when it is blocked or not valid, or when a
   ///        move from rest does not break away. `backward`: the move extends the goal tree,
   ///        so it runs backwards in time and starts no run (the caller checks breakaway).
+  ///        On false, refusal_ holds the rule broken.
   bool stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
               const PivotAnchor& anchor, SupportStep& out, bool backward = false);
 
@@ -146,6 +154,7 @@ class SupportSearch {
   SupportSearchSettings settings_;
   SupportGeometry geometry_;
   std::unordered_set<CellKey, CellKeyHash> blocked_;
+  SupportRule refusal_ = SupportRule::kBalance;  ///< why the last stepTo() refused
 };
 
 }  // namespace rbsf::planner

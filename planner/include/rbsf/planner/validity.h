@@ -8,7 +8,9 @@
 ///   - the part is supported: at least `min_touching` contacts have gap <= touch_distance
 ///     (the closest points are searched from the state's own SimState hints, so the test is
 ///     a pure function of the state), and the COM is above the base axis by `min_height`;
-///   - no fingertip penetrates the part by more than `penetration_tolerance`.
+///   - no fingertip penetrates the part by more than `penetration_tolerance`;
+///   - the propagation step into it counted (propagator.h: decisive contact modes and, by
+///     default, the cell's motion limits at every simulator step).
 /// Contact forces cannot exceed what the limited tau and gravity produce; the simulator's
 /// forces are reported in the plan (f_n per sample).
 

@@ -25,6 +25,13 @@ struct ReportVerdict {
   std::string detail;    ///< e.g. the worst trial
 };
 
+/// \brief A section below the summary: a heading and a paragraph (element id `id`).
+struct ReportSection {
+  std::string id;
+  std::string title;
+  std::string text;
+};
+
 /// \brief The report page.
 class HtmlReport {
  public:
@@ -34,6 +41,9 @@ class HtmlReport {
   HtmlReport(const RbsfModel& model, std::vector<TrajectorySample> frames,
              SvgAnimationOptions animation,
              std::vector<std::pair<std::string, std::string>> summary, ReportVerdict verdict = {});
+
+  /// \brief Add a section below the summary table, in the order added.
+  void addSection(ReportSection section) { sections_.push_back(std::move(section)); }
 
   /// \brief The whole page.
   /// \throws std::runtime_error if a sample holds a NaN or an infinity.
@@ -47,6 +57,7 @@ class HtmlReport {
   SvgAnimationOptions animation_;
   std::vector<std::pair<std::string, std::string>> summary_;
   ReportVerdict verdict_;
+  std::vector<ReportSection> sections_;
 };
 
 }  // namespace rbsf::tools
