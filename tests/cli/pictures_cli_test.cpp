@@ -24,8 +24,9 @@ const std::string kPlanExe = RBSF_PLAN_EXE;
 const std::string kSimulateExe = RBSF_SIMULATE_EXE;
 const std::string kCellDir = std::string(RBSF_SOURCE_DIR) + "/cells/";
 const std::string kSmall = kPlanExe + " --cell " + kCellDir +
-                           "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 7"
-                           " --time-limit 120 --quiet --planner KPIECE1 --attempts 1";
+                           "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 4"
+                           " --time-limit 3600 --max-propagations 200000 --quiet"
+                           " --planner KPIECE1 --attempts 1";
 // The optimiser, bounded by iterations (not wall time) so that its result is deterministic.
 const std::string kOptimised = " --knots 30 --optimize-time-limit 600 --optimize-iterations 150";
 

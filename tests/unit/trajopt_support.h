@@ -21,7 +21,8 @@ inline const plan::Plan& shortPlan() {
   static const plan::Plan plan = [] {
     planner::PlannerSettings s;
     s.seed = 5;
-    s.time_limit = 120.0;
+    s.time_limit = 3600.0;
+    s.max_propagations = 200000;
     s.keep_motion_limits = false;
     planner::ReorientationPlanner planner(defaultModel(), s);
     planner::Problem p;
