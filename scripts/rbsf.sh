@@ -63,8 +63,12 @@ case "$cmd" in
     consumer
     ;;
   sanitize)
+    # Only the binaries of the tests labelled unit (the tools and CLI tests are not run here).
     ./scripts/install-deps.sh
-    configure_build build-asan -DRBSF_SANITIZE=ON -DRBSF_BUILD_BENCHMARKS=OFF
+    cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Release -DRBSF_SANITIZE=ON \
+      -DRBSF_BUILD_BENCHMARKS=OFF >/dev/null
+    cmake --build build-asan -j "$jobs" --target rbsf_unit_tests rbsf_controller_tests \
+      rbsf_no_allocation_tests
     ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
       LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp" \
       ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
