@@ -620,6 +620,28 @@ TEST(PlanReorientation, ASearchThatRunsOutOfNodesSaysSoNotTimeLimit) {
       << r.out;
   EXPECT_EQ(r.out.find("no plan within"), std::string::npos) << r.out;
   EXPECT_FALSE(std::ifstream(out).good()) << "wrote a plan";
+  // What it reached, on stderr even with --quiet: the angles, the closest pose and a rule.
+  EXPECT_NE(r.err.find("plan-reorientation: no support path; the search reached part angles "),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find(" from the goal; moves beyond it refused by "), std::string::npos) << r.err;
+}
+
+TEST(PlanReorientation, TheReportOfAKinodynamicPlanSaysWhatTheSupportPlannerReached) {
+  // +15 deg through the pipeline: the support search finds nothing, one kinodynamic search
+  // within a small budget ends approximate (exit 3); its report has the reach section.
+  const std::string out = writeTemp("reach_plan.json", ""), report = writeTemp("reach.html", "");
+  const Result r = run(kPlan + " --cell " + kCells +
+                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,15deg --attempts 1"
+                       " --max-propagations 2000 --time-limit 3600 --no-optimize --quiet"
+                       " --trials 2 --out " +
+                       out + " --report " + report);
+  ASSERT_EQ(r.status, 3) << r.out << r.err;
+  const std::string html = slurp(report);
+  EXPECT_NE(html.find("<div id=\"reach\">"), std::string::npos);
+  EXPECT_NE(html.find("What the support planner reached"), std::string::npos);
+  EXPECT_NE(html.find("reached part angles"), std::string::npos);
+  EXPECT_EQ(run("xmllint --noout " + report).status, 0);
 }
 
 TEST(PlanReorientation, AbsoluteGoalAngleIsATotalTurn) {
