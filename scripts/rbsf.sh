@@ -38,8 +38,8 @@ case "$cmd" in
     configure_build build
     # The main job: turn the default part over (180 degrees; the base alone reaches 45),
     # certify the plan (closed-loop trials under the cell's sensing and uncertainty) and
-    # write it. Its exit status is the verdict: 0 a certified plan; 4 a plan written but
-    # not certified (see plan-reorientation --help).
+    # write it. Its exit status is the verdict: 0 a certified plan; 4 an exact plan written
+    # but not certified; 3 no plan reaches the goal (see plan-reorientation --help).
     exec ./build/tools/plan-reorientation --cell cells/default.yaml --start 0.1,0.40,0 \
       --goal=-0.1,0.40,180deg --out plan.json --csv plan.csv --report plan.html
     ;;
