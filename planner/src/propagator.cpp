@@ -22,8 +22,7 @@ SimPropagator::SimPropagator(const oc::SpaceInformationPtr& si, const Simulator&
       space_(space),
       m_(simulator.model().numFingers()),
       rule_(rule),
-      limited_(limits != nullptr),
-      limits_(limits != nullptr ? *limits : MotionLimits{}),
+      limits_(limits != nullptr ? std::optional<MotionLimits>(*limits) : std::nullopt),
       ws_(simulator.model().numFingers()) {
   checkSettings(rule);
 }
@@ -48,8 +47,8 @@ void SimPropagator::propagate(const ompl::base::State* state, const oc::Control*
       },
       [&](const SimState& now, const StepReport& report, const VecU&, long step) {
         if (!now.q.allFinite() || !now.v.allFinite()) return false;  // the checker refuses it
-        if (limited_ && (std::hypot(now.v[layout::kX], now.v[layout::kY]) > limits_.part_speed ||
-                         std::abs(now.v[layout::kPhi]) > limits_.angular_speed)) {
+        if (limits_ && (std::hypot(now.v[layout::kX], now.v[layout::kY]) > limits_->part_speed ||
+                        std::abs(now.v[layout::kPhi]) > limits_->angular_speed)) {
           slow = false;
           return false;
         }
@@ -70,7 +69,6 @@ void SimPropagator::propagate(const ompl::base::State* state, const oc::Control*
   // A refused step ends where the rule broke: its state is never used.
   static_cast<SimStateSpace::StateType*>(result)->decisive = decisive && slow;
   indecisive_ += decisive ? 0 : 1;
-  too_fast_ += slow ? 0 : 1;
   ++propagations_;
   steps_ += static_cast<std::uint64_t>(k);
 }

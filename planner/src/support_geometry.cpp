@@ -94,7 +94,12 @@ Support SupportGeometry::check(const JigPose& pose, const ContactSet& set, const
   Support out;
   const std::optional<VecQ> q = configuration(pose, set, true, &out.refusal);
   if (!q) return out;
-  out.q = *q;
+  return balanceAt(*q, set, slip);
+}
+
+Support SupportGeometry::balanceAt(const VecQ& q, const ContactSet& set, const VecC& slip) {
+  Support out;
+  out.q = q;
   out.balance = balancer_.statics(out.q, set, data_, slip);
   out.margin = out.balance.margin;
   out.valid = out.balance.balanced && (!settings_.require_determined || out.balance.determined);

@@ -29,6 +29,7 @@ struct SupportSearch::Node {
   SupportStep step;
   double g = 0.0;
   int parent = -1;
+  double h = 0.0;  ///< the tree's heuristic at the node (start tree: to the goal)
 };
 
 SupportSearch::SupportSearch(const RbsfModel& model, SupportSearchSettings settings)
@@ -76,7 +77,7 @@ bool SupportSearch::stepTo(const SupportStep& from, const JigPose& pose, const C
   const std::optional<VecQ> q = geometry_.configuration(pose, set, true, &refusal_);
   if (!q) return false;
   const VecC slip = set == from.set ? geometry_.slipDirections(from.q, *q) : VecC();
-  const Support s = geometry_.check(pose, set, slip);
+  const Support s = geometry_.balanceAt(*q, set, slip);
   if (!s.valid) {
     refusal_ = s.refusal;
     return false;
@@ -176,8 +177,8 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     return th >= t_lo && th <= t_hi && l >= f.stroke_min + settings_.support.stroke_margin &&
            l <= f.stroke_max - settings_.support.stroke_margin;
   };
-  auto heuristic = [&](const SupportStep& s) {
-    const double h = poseHeuristic(s.pose);
+  // `h` is poseHeuristic(s.pose), which the caller has at hand.
+  auto heuristic = [&](const SupportStep& s, double h) {
     if (s.set.pivot() < 0) return h;
     double psi, th, l;
     if (!pivotTarget(s, psi, th, l)) return h + 2.0 * settings_.switch_cost;
@@ -222,23 +223,19 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
   reach.closest = start;
   reach.closest_score = INFINITY;
   // The start tree's reach: angle ranges and the pose closest to the goal.
-  auto noteReached = [&](const SupportStep& s) {
+  auto noteReached = [&](const SupportStep& s, double score) {
     const Pose w = s.pose.world();
     reach.psi_min = std::min(reach.psi_min, s.pose.psi);
     reach.psi_max = std::max(reach.psi_max, s.pose.psi);
     reach.phi_min = std::min(reach.phi_min, w.phi);
     reach.phi_max = std::max(reach.phi_max, w.phi);
     ++reach.poses;
-    const double score = poseHeuristic(s.pose);
     if (score < reach.closest_score) {
       reach.closest_score = score;
       reach.closest = w;
       reach.closest_position = std::hypot(goal.x - w.x, goal.y - w.y);
       reach.closest_angle = std::remainder(goal.phi - w.phi, 2.0 * M_PI);
     }
-  };
-  auto treeHeuristic = [&](int t, const SupportStep& s) {
-    return t == 0 ? heuristic(s) : distance(s.pose, start_pose, ls);
   };
   auto push = [&](int t, const SupportStep& s, double g, int parent) {
     Tree& tree = trees[t];
@@ -247,10 +244,15 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     const auto it = tree.best.find(k);
     if (it != tree.best.end() && it->second <= g + 1e-12) return;
     tree.best[k] = g;
-    tree.nodes.push_back(Node{s, g, parent});
+    double h = distance(s.pose, start_pose, ls);  // the goal tree grows towards the start
+    if (t == 0) {
+      const double to_goal = poseHeuristic(s.pose);
+      h = heuristic(s, to_goal);
+      noteReached(s, to_goal);
+    }
+    tree.nodes.push_back(Node{s, g, parent, h});
     const int id = static_cast<int>(tree.nodes.size()) - 1;
-    tree.open.emplace(g + settings_.heuristic_weight * treeHeuristic(t, s), id);
-    if (t == 0) noteReached(s);
+    tree.open.emplace(g + settings_.heuristic_weight * h, id);
     if (s.set.phase() == Phase::kU) tree.sliding[meetKey(s)].push_back(id);
     if (s.set.phase() == Phase::kP) tree.pivots[pivotKey(s, 0, 0, s.set.pivot())].push_back(id);
   };
@@ -459,7 +461,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     }
     const SupportStep& s = node.step;
 
-    if (t == 0 && heuristic(s) <= settings_.goal_connect) {
+    if (t == 0 && node.h <= settings_.goal_connect) {
       order.clear();
       for (int g = 0; g < static_cast<int>(goals.size()); ++g)
         order.emplace_back(distance(s.pose, goals[g], ls), g);

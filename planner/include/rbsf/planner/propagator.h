@@ -29,6 +29,7 @@
 /// from counted steps is within the limits.
 
 #include <cstdint>
+#include <optional>
 
 #include <ompl/control/StatePropagator.h>
 
@@ -57,21 +58,17 @@ class SimPropagator : public ompl::control::StatePropagator {
   std::uint64_t steps() const { return steps_; }
   /// \brief Number of propagation steps refused by the decisive-modes rule so far.
   std::uint64_t indecisive() const { return indecisive_; }
-  /// \brief Number of propagation steps refused for breaking the motion limits so far.
-  std::uint64_t tooFast() const { return too_fast_; }
 
  private:
   const Simulator& simulator_;
   const SimStateSpace& space_;
   int m_;
   DecisiveModes rule_;
-  bool limited_;
-  MotionLimits limits_;
+  std::optional<MotionLimits> limits_;  ///< none: only the decisive-modes rule
   mutable SimulatorWorkspace ws_;
   mutable std::uint64_t propagations_ = 0;
   mutable std::uint64_t steps_ = 0;
   mutable std::uint64_t indecisive_ = 0;
-  mutable std::uint64_t too_fast_ = 0;
 };
 
 }  // namespace rbsf::planner

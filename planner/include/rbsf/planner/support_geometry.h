@@ -94,6 +94,9 @@ class SupportGeometry {
   /// \brief Configuration and verdict; `slip` (may be empty) the planned slip direction of
   ///        each contact (contact_balance.h), from slipDirections().
   Support check(const JigPose& pose, const ContactSet& set, const VecC& slip = VecC());
+  /// \brief The verdict of check() for `set` at configuration q, which configuration()
+  ///        gave (the balance alone: the geometry was checked there).
+  Support balanceAt(const VecQ& q, const ContactSet& set, const VecC& slip = VecC());
 
   /// \brief Whether a run of `set` can start from rest at configuration q with the planned
   ///        slip `slip` (slipDirections()): true without a sliding contact, else
