@@ -63,10 +63,12 @@ case "$cmd" in
     consumer
     ;;
   sanitize)
-    # Only the binaries of the tests labelled unit (the tools and CLI tests are not run here).
+    # Only the binaries of the tests labelled unit (the tools and CLI tests are not run here),
+    # at -O1: the instrumented -O3 build took 19 of CI's 46 minutes; -O1 builds in about 12
+    # and runs the tests in about 6 instead of 4.
     ./scripts/install-deps.sh
     cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Release -DRBSF_SANITIZE=ON \
-      -DRBSF_BUILD_BENCHMARKS=OFF >/dev/null
+      -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DRBSF_BUILD_BENCHMARKS=OFF >/dev/null
     cmake --build build-asan -j "$jobs" --target rbsf_unit_tests rbsf_controller_tests \
       rbsf_no_allocation_tests
     ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \

@@ -25,6 +25,12 @@ JigPose JigPose::fromWorld(const Pose& p, double theta) {
   return JigPose{b.x(), b.y(), p.phi - theta, theta};
 }
 
+double poseDistance(const JigPose& a, const JigPose& b, double length_scale) {
+  const double dx = (a.X - b.X) / length_scale, dy = (a.Y - b.Y) / length_scale;
+  const double dp = a.psi - b.psi, dt = a.theta - b.theta;
+  return std::sqrt(dx * dx + dy * dy + dp * dp + dt * dt);
+}
+
 SupportGeometry::SupportGeometry(const RbsfModel& model, SupportSettings settings)
     : model_(model),
       settings_(settings),
@@ -124,6 +130,23 @@ JigPose SupportGeometry::pivotPose(const PivotAnchor& anchor, double psi, double
   const Vec2 tip(model_.cell().fingers[anchor.finger].r, anchor.stroke);
   const Vec2 p = tip - rotation(psi) * model_.shape().point(anchor.xi);
   return JigPose{p.x(), p.y(), psi, theta};
+}
+
+bool SupportGeometry::pivotOnto(const PivotAnchor& anchor, const Pose& goal, double psi_near,
+                                double& psi, double& theta, double& stroke) const {
+  const Vec2 w = Vec2(goal.x, goal.y) + rotation(goal.phi) * model_.shape().point(anchor.xi);
+  const Cell& cell = model_.cell();
+  const FingerParams& f = cell.fingers[anchor.finger];
+  const double l2 = w.squaredNorm() - f.r * f.r;
+  if (l2 <= 0.0) return false;
+  stroke = std::sqrt(l2);
+  theta = std::atan2(w.y(), w.x()) - std::atan2(stroke, f.r);
+  psi = goal.phi - theta;
+  psi += 2.0 * M_PI * std::round((psi_near - psi) / (2.0 * M_PI));
+  return theta >= cell.base.theta_min + settings_.theta_margin &&
+         theta <= cell.base.theta_max - settings_.theta_margin &&
+         stroke >= f.stroke_min + settings_.stroke_margin &&
+         stroke <= f.stroke_max - settings_.stroke_margin;
 }
 
 ContactSet SupportGeometry::placedSet(const JigPose& pose) const {

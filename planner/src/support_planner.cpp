@@ -39,13 +39,74 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
   bool have = false, runs = false;
   double followed = -1.0;  // how long `plan`'s run followed its reference [s]
   std::string why;
-  for (double use : settings_.friction_uses) {
+  // Runs `path` closed loop and keeps its plan when the run ends on the goal or follows its
+  // reference longer than the plan kept. When the run misses the goal, the stretch where it
+  // departed is blocked in `search`; false when nothing new was blocked (the same path
+  // would come again).
+  auto tryPath = [&](const SupportPath& path, SupportSearch& search, double use) {
+    ++paths_;
+    std::vector<SupportRun> stretches;
+    ReferenceTrajectory reference;
+    try {
+      reference = supportReference(model_, search.geometry(), path, timing, &stretches);
+    } catch (const SupportReferenceError& e) {
+      for (std::size_t k = e.first_step; k <= e.last_step; ++k)
+        search.block(path.steps[k], settings_.block_radius);
+      why = e.what();
+      return true;
+    }
+    plan::Plan run = closedLoopPlan(model_, reference, settings_.simulator, settings_.feedback,
+                                    problem.goal, settings_.position_tolerance,
+                                    settings_.angle_tolerance, settings_.sample_steps);
+    runs = run.status == plan::PlanStatus::kExact;
+    // Where the run left its reference: the stretch to blame (the end when it never did).
+    const double departs =
+        departureTime(run, reference, settings_.departure_position, settings_.departure_angle);
+    const double lasted = departs < 0.0 ? reference.endTime() : departs;
+    if (runs || !have || lasted > followed) {
+      plan = std::move(run);
+      followed = lasted;
+      friction_use_ = use;
+      have = true;
+    }
+    if (runs) return true;
+    why = "no support path found has a closed-loop run that ends on the goal";
+    const std::size_t blocked = search.blockedCount();
+    for (const SupportRun& s : stretches)
+      if (lasted >= s.start && lasted <= s.end)
+        for (std::size_t k = s.first_step; k <= s.last_step; ++k)
+          search.block(path.steps[k], settings_.block_radius);
+    return search.blockedCount() != blocked;
+  };
+  auto budgetLeft = [&] {
+    return timeLeft() > 0.0 &&
+           (settings_.max_expansions <= 0 || expansions_ < settings_.max_expansions);
+  };
+  auto cancelled = [&] { return settings_.cancel != nullptr && settings_.cancel->load(); };
+
+  // Simple turns first (pivot_turn_search.h): one pivot, the fewest runs a turn can have.
+  for (double use : settings_.simple_turn_friction_uses) {
+    if (runs || cancelled() || !budgetLeft()) break;
     SupportSearchSettings ss = settings_.search;
     ss.support.balance.friction_use = use;
     SupportSearch search(model_, ss);
-    for (int n = 0; n < std::max(1, settings_.max_paths) && !runs; ++n) {
-      if (timeLeft() <= 0.0) break;
-      if (settings_.max_expansions > 0 && expansions_ >= settings_.max_expansions) break;
+    PivotTurnSettings ps = settings_.simple_turn;
+    if (settings_.max_expansions > 0)
+      ps.max_expansions = std::min(ps.max_expansions, settings_.max_expansions - expansions_);
+    PivotTurnSearch simple(search, ps);
+    for (int n = 0; n < std::max(1, settings_.max_paths) && !runs && budgetLeft(); ++n) {
+      const SupportPath path =
+          simple.search(problem.start, problem.start_theta, problem.goal, settings_.cancel);
+      expansions_ += path.expansions;
+      if (!path.found || !tryPath(path, search, use)) break;
+    }
+  }
+  for (double use : settings_.friction_uses) {
+    if (runs || cancelled()) break;
+    SupportSearchSettings ss = settings_.search;
+    ss.support.balance.friction_use = use;
+    SupportSearch search(model_, ss);
+    for (int n = 0; n < std::max(1, settings_.max_paths) && !runs && budgetLeft(); ++n) {
       search.setTimeLimit(timeLeft());
       if (settings_.max_expansions > 0)
         search.setMaxExpansions(
@@ -58,41 +119,8 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
         why = path.message;
         break;
       }
-      ++paths_;
-      std::vector<SupportRun> stretches;
-      ReferenceTrajectory reference;
-      try {
-        reference = supportReference(model_, search.geometry(), path, timing, &stretches);
-      } catch (const SupportReferenceError& e) {
-        for (std::size_t k = e.first_step; k <= e.last_step; ++k)
-          search.block(path.steps[k], settings_.block_radius);
-        why = e.what();
-        continue;
-      }
-      plan::Plan run = closedLoopPlan(model_, reference, settings_.simulator, settings_.feedback,
-                                      problem.goal, settings_.position_tolerance,
-                                      settings_.angle_tolerance, settings_.sample_steps);
-      runs = run.status == plan::PlanStatus::kExact;
-      // Where the run left its reference: the stretch to blame (the end when it never did).
-      const double departs =
-          departureTime(run, reference, settings_.departure_position, settings_.departure_angle);
-      const double lasted = departs < 0.0 ? reference.endTime() : departs;
-      if (runs || !have || lasted > followed) {
-        plan = std::move(run);
-        followed = lasted;
-        friction_use_ = use;
-        have = true;
-      }
-      if (runs) break;
-      why = "no support path found has a closed-loop run that ends on the goal";
-      const std::size_t blocked = search.blockedCount();
-      for (const SupportRun& s : stretches)
-        if (lasted >= s.start && lasted <= s.end)
-          for (std::size_t k = s.first_step; k <= s.last_step; ++k)
-            search.block(path.steps[k], settings_.block_radius);
-      if (search.blockedCount() == blocked) break;  // the same path would come again
+      if (!tryPath(path, search, use)) break;
     }
-    if (runs || (settings_.cancel != nullptr && settings_.cancel->load())) break;
   }
   if (!have) {
     message_ = why.empty() ? "no time left for a search" : why;

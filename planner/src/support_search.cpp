@@ -11,19 +11,25 @@
 namespace rbsf::planner {
 namespace {
 
-/// Normalised distance between two poses (the search's metric).
-double distance(const JigPose& a, const JigPose& b, double length_scale) {
-  const double dx = (a.X - b.X) / length_scale, dy = (a.Y - b.Y) / length_scale;
-  const double dp = a.psi - b.psi, dt = a.theta - b.theta;
-  return std::sqrt(dx * dx + dy * dy + dp * dp + dt * dt);
-}
-
 JigPose lerp(const JigPose& a, const JigPose& b, double s) {
   return JigPose{a.X + s * (b.X - a.X), a.Y + s * (b.Y - a.Y), a.psi + s * (b.psi - a.psi),
                  a.theta + s * (b.theta - a.theta)};
 }
 
 }  // namespace
+
+int phaseRuns(const std::vector<SupportStep>& steps) {
+  int runs = 1;
+  for (std::size_t k = 1; k < steps.size(); ++k) runs += steps[k].set != steps[k - 1].set ? 1 : 0;
+  return runs;
+}
+
+double pathLength(const std::vector<SupportStep>& steps, double length_scale) {
+  double length = 0.0;
+  for (std::size_t k = 1; k < steps.size(); ++k)
+    length += poseDistance(steps[k - 1].pose, steps[k].pose, length_scale);
+  return length;
+}
 
 struct SupportSearch::Node {
   SupportStep step;
@@ -92,7 +98,12 @@ bool SupportSearch::stepTo(const SupportStep& from, const JigPose& pose, const C
   out.anchor = anchor;
   out.q = s.q;
   out.margin = s.margin;
-  out.rest = set != from.set;
+  // Sliders that have not slipped yet are still stuck: the run starts at the first move that
+  // slips one, and breakaway is checked there.
+  bool still = set == from.set && from.rest && !backward;
+  for (int i = 0; still && i < slip.size(); ++i)
+    if (set.touches(i) && !set.sticks(i) && std::abs(slip[i]) > 1e-4) still = false;
+  out.rest = set != from.set || still;
   return true;
 }
 
@@ -155,27 +166,12 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     }
   auto poseHeuristic = [&](const JigPose& p) {
     double h = INFINITY;
-    for (const JigPose& g : goals) h = std::min(h, distance(p, g, ls));
+    for (const JigPose& g : goals) h = std::min(h, poseDistance(p, g, ls));
     return h;
   };
-  // The pivot that puts the part on the goal: the tip's world position is fixed by the goal
-  // pose and the anchor, which fixes the stroke and the base angle. False when out of reach.
-
+  // The pivot that puts the part on the goal (SupportGeometry::pivotOnto).
   auto pivotTarget = [&](const SupportStep& s, double& psi, double& th, double& l) {
-    const int k = s.set.pivot();
-    const Vec2 c = model_.shape().point(s.anchor.xi);
-    const Vec2 w =
-        Vec2(goal.x, goal.y) + Vec2(std::cos(goal.phi) * c.x() - std::sin(goal.phi) * c.y(),
-                                    std::sin(goal.phi) * c.x() + std::cos(goal.phi) * c.y());
-    const FingerParams& f = cell.fingers[k];
-    const double l2 = w.squaredNorm() - f.r * f.r;
-    if (l2 <= 0.0) return false;
-    l = std::sqrt(l2);
-    th = std::atan2(w.y(), w.x()) - std::atan2(l, f.r);
-    psi = goal.phi - th;
-    psi += 2.0 * M_PI * std::round((s.pose.psi - psi) / (2.0 * M_PI));
-    return th >= t_lo && th <= t_hi && l >= f.stroke_min + settings_.support.stroke_margin &&
-           l <= f.stroke_max - settings_.support.stroke_margin;
+    return geometry_.pivotOnto(s.anchor, goal, s.pose.psi, psi, th, l);
   };
   // `h` is poseHeuristic(s.pose), which the caller has at hand.
   auto heuristic = [&](const SupportStep& s, double h) {
@@ -244,7 +240,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     const auto it = tree.best.find(k);
     if (it != tree.best.end() && it->second <= g + 1e-12) return;
     tree.best[k] = g;
-    double h = distance(s.pose, start_pose, ls);  // the goal tree grows towards the start
+    double h = poseDistance(s.pose, start_pose, ls);  // the goal tree grows towards the start
     if (t == 0) {
       const double to_goal = poseHeuristic(s.pose);
       h = heuristic(s, to_goal);
@@ -288,7 +284,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
   for (const JigPose& g : goals) seed(1, g);
 
   auto moveCost = [&](const SupportStep& from, const SupportStep& to) {
-    return distance(from.pose, to.pose, ls) *
+    return poseDistance(from.pose, to.pose, ls) *
            (1.0 + settings_.margin_weight / (std::min(from.margin, to.margin) + 0.01));
   };
   // A path: the forward chain to `f`, `middle`, then the backward chain from `b` (if any).
@@ -306,12 +302,8 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     candidate.insert(candidate.end(), middle.begin(), middle.end());
     for (int n = b >= 0 ? trees[1].nodes[b].parent : -1; n >= 0; n = trees[1].nodes[n].parent)
       candidate.push_back(trees[1].nodes[n].step);
-    int runs = 1;
-    double length = 0.0;
-    for (std::size_t k = 1; k < candidate.size(); ++k) {
-      runs += candidate[k].set != candidate[k - 1].set ? 1 : 0;
-      length += distance(candidate[k - 1].pose, candidate[k].pose, ls);
-    }
+    const int runs = phaseRuns(candidate);
+    const double length = pathLength(candidate, ls);
     if (!result.found) {
       stop_at = result.expansions +
                 static_cast<long>(
@@ -332,7 +324,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     if (it == trees[1 - t].sliding.end()) return false;
     std::vector<std::pair<double, int>> near;
     for (int other : it->second) {
-      const double dist = distance(s.pose, trees[1 - t].nodes[other].step.pose, ls);
+      const double dist = poseDistance(s.pose, trees[1 - t].nodes[other].step.pose, ls);
       if (dist <= settings_.goal_connect) near.emplace_back(dist, other);
     }
     std::sort(near.begin(), near.end());
@@ -419,7 +411,8 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
           if (it == trees[1 - t].pivots.end()) continue;
           for (int other : it->second)
             if (trees[1 - t].nodes[other].step.set.touching == s.set.touching)
-              near.emplace_back(distance(s.pose, trees[1 - t].nodes[other].step.pose, ls), other);
+              near.emplace_back(poseDistance(s.pose, trees[1 - t].nodes[other].step.pose, ls),
+                                other);
         }
     }
     std::sort(near.begin(), near.end());
@@ -464,7 +457,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
     if (t == 0 && node.h <= settings_.goal_connect) {
       order.clear();
       for (int g = 0; g < static_cast<int>(goals.size()); ++g)
-        order.emplace_back(distance(s.pose, goals[g], ls), g);
+        order.emplace_back(poseDistance(s.pose, goals[g], ls), g);
       std::sort(order.begin(), order.end());
       std::vector<SupportStep> tail;
       if (s.set.phase() == Phase::kU) {

@@ -17,6 +17,7 @@
 #include "rbsf/plan/plan_motion.h"
 #include "rbsf/planner/support_planner.h"
 #include "rbsf/planner/support_trajectory.h"
+#include "support_path_checks.h"
 
 namespace rbsf::planner {
 using namespace rbsf::plan;  // the plan the planner makes
@@ -236,22 +237,6 @@ TEST(SupportTrajectory, ThePlanIsExactSlowJointFedBackAndEndsAtRestOnTheGoal) {
   EXPECT_GE(long_free.longest_free, 0.3);
   EXPECT_LT(long_free.longest_free, 0.3 + 0.03);  // samples every 10 steps at most
   EXPECT_LT(long_free.longest_free_start, 1.0);
-}
-
-/// The first steps of the runs of `path` that do not break away there, with the slip of their
-/// first move (SupportGeometry::breaksAway).
-std::vector<SupportStep> runStartsThatStayStuck(SupportGeometry& geometry,
-                                                const SupportPath& path) {
-  std::vector<SupportStep> out;
-  for (std::size_t i = 0; i + 1 < path.steps.size(); ++i) {
-    const SupportStep& a = path.steps[i];
-    const SupportStep& b = path.steps[i + 1];
-    const bool starts = i == 0 || path.steps[i - 1].set != a.set;
-    if (starts && a.set == b.set &&
-        !geometry.breaksAway(a.q, a.set, geometry.slipDirections(a.q, b.q)))
-      out.push_back(a);
-  }
-  return out;
 }
 
 TEST(SupportSearch, EveryRunWithSlidingContactsBreaksAwayWhereItStarts) {

@@ -45,7 +45,8 @@ struct Options {
       start_theta = "0", planner = "auto", attempts = "0", time_limit = "30", seed = "1", out, csv,
       svg, report, svg_still = "0", knots = "100", optimize_time_limit = "30",
       optimize_iterations = "500", optimize_tolerance = "1e-6", goal_angle = "nearest",
-      trial_seed = "1", friction_use, support_lattice, max_expansions, max_propagations;
+      trial_seed = "1", friction_use, simple_turns, support_lattice, max_expansions,
+      max_propagations;
   CertificateOptions certificate;
   bool quiet = false, no_optimize = false, reproducible = false, no_decisive_modes = false;
 };
@@ -62,17 +63,25 @@ std::string defaultLattice() {
   return numberText(s.angle_step * 180.0 / M_PI) + "deg," + numberText(s.xy_step);
 }
 
-/// --friction-use and --support-lattice, when given, into the support planner's settings.
-/// The lattice's expansion cap grows with the number of its cells (angle^2 x position).
-void parseSupportOptions(const std::string& friction_use, const std::string& lattice,
-                         planner::SupportPlannerSettings& support) {
-  if (!friction_use.empty()) {
-    support.friction_uses = parseList(friction_use, "--friction-use");
-    for (double use : support.friction_uses)
-      if (!(use > 0.0 && use <= 1.0))
-        throw InputError("--friction-use: each share of the friction cone must be in (0, 1] (got " +
-                         numberText(use) + ")");
-  }
+/// A list of friction uses, each in (0, 1].
+std::vector<double> parseFrictionUses(const std::string& text, const std::string& key) {
+  const std::vector<double> uses = parseList(text, key);
+  for (double use : uses)
+    if (!(use > 0.0 && use <= 1.0))
+      throw InputError(key + ": each share of the friction cone must be in (0, 1] (got " +
+                       numberText(use) + ")");
+  return uses;
+}
+
+/// --friction-use, --simple-turns and --support-lattice, when given, into the support
+/// planner's settings. The lattice's expansion cap grows with the number of its cells
+/// (angle^2 x position).
+void parseSupportOptions(const std::string& friction_use, const std::string& simple_turns,
+                         const std::string& lattice, planner::SupportPlannerSettings& support) {
+  if (!friction_use.empty())
+    support.friction_uses = parseFrictionUses(friction_use, "--friction-use");
+  if (!simple_turns.empty())
+    support.simple_turn_friction_uses = parseFrictionUses(simple_turns, "--simple-turns");
   if (lattice.empty()) return;
   const std::vector<std::string_view> steps =
       parseFields(lattice, "--support-lattice", 2, "angle,position");
@@ -197,6 +206,10 @@ int run(int argc, char** argv) {
                  "support planner: the sticking forces' share of the friction cone, one search "
                  "per value in order, each in (0, 1] (default " +
                      defaultFrictionUses() + ")");
+  app.add_option("--simple-turns", o.simple_turns,
+                 "support planner: first search turns of one pivot (pivot_turn_search.h) at "
+                 "these friction uses, each in (0, 1] (default: none; 0.82 finds the default "
+                 "cell's quarter turn, whose run does not yet hold the part)");
   app.add_option("--max-expansions", o.max_expansions,
                  "support planner: at most this many expansions over all its searches, a "
                  "budget that gives the same plan on any machine where the time limit does not "
@@ -244,7 +257,7 @@ int run(int argc, char** argv) {
   o.certificate.apply(certificate);
   certificate.seed =
       static_cast<std::uint64_t>(parseInteger(o.trial_seed, "--trial-seed", 1, 1LL << 53));
-  parseSupportOptions(o.friction_use, o.support_lattice, pipeline.support);
+  parseSupportOptions(o.friction_use, o.simple_turns, o.support_lattice, pipeline.support);
   if (!o.max_expansions.empty())
     pipeline.support.max_expansions =
         parseInteger(o.max_expansions, "--max-expansions", 1, 1000000000);

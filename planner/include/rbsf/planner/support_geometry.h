@@ -40,6 +40,10 @@ struct JigPose {
   static JigPose fromWorld(const Pose& p, double theta);
 };
 
+/// \brief The support searches' metric between two poses: sqrt(dX^2 + dY^2) / length_scale
+///        and the angles in radians, as one Euclidean norm.
+double poseDistance(const JigPose& a, const JigPose& b, double length_scale);
+
 /// \brief The sticking finger's hold on the part during a pivot.
 struct PivotAnchor {
   int finger = -1;      ///< k
@@ -113,6 +117,13 @@ class SupportGeometry {
 
   /// \brief The pose of a pivot about `anchor` with part angle psi and base angle theta.
   JigPose pivotPose(const PivotAnchor& anchor, double psi, double theta) const;
+  /// \brief The pivot about `anchor` that puts the part on world pose `goal`: the tip's
+  ///        world point w = (x, y) + R(phi) c(xi) is fixed, so the stroke is
+  ///        sqrt(|w|^2 - r_k^2) and the base angle atan2(w) - atan2(stroke, r_k); psi is
+  ///        phi - theta, taken within pi of `psi_near`. False when the stroke or the base
+  ///        angle is outside its limits (with the margins).
+  bool pivotOnto(const PivotAnchor& anchor, const Pose& goal, double psi_near, double& psi,
+                 double& theta, double& stroke) const;
 
   /// \brief Every finger whose line meets the part's underside at `pose` with a stroke
   ///        inside its limits (the placement rule's set, all sliding).

@@ -8,6 +8,9 @@
 /// goal angle is reached the shorter way (or +- 2 pi when that way has no path). Status
 /// "exact" when the closed-loop run ends within the tolerances of the goal.
 ///
+/// Simple turns (one pivot, pivot_turn_search.h) are searched first when asked for, then the
+/// general search (support_search.h) at each friction use in turn.
+///
 /// A balanced support is not always one the joints can hold: where the touching contacts
 /// barely fix the part, the nominal closed-loop run leaves the reference with the strokes
 /// on theirs. So each path found is run before it is accepted (a lazy check, like a lazy
@@ -23,6 +26,7 @@
 
 #include "rbsf/dynamics/feedback_schedule.h"
 #include "rbsf/plan/plan.h"
+#include "rbsf/planner/pivot_turn_search.h"
 #include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/support_trajectory.h"
 
@@ -43,6 +47,11 @@ struct SupportPlannerSettings {
   ///        of each search attempt, the strongest margin first: the next is tried when an
   ///        attempt ends without a path whose run ends on the goal.
   std::vector<double> friction_uses = {0.45, 0.6};
+  /// \brief The friction uses at which simple turns (pivot_turn_search.h) are searched,
+  ///        before any general search (default none: on the default cell their runs do not
+  ///        yet hold the part, docs/notes/2026-11-27-one-pivot-turns.md).
+  std::vector<double> simple_turn_friction_uses;
+  PivotTurnSettings simple_turn;  ///< the simple turns' lattice and budget
   /// \brief The nominal run departs when the part is this far from the reference [m]...
   ///        (half the goal tolerances; the certified 30 degree plan's run stays within
   ///        0.9 mm and 0.42 deg of its reference)

@@ -64,10 +64,15 @@ struct SupportStep {
   PivotAnchor anchor;   ///< meaningful when set.pivot() >= 0
   VecQ q;               ///< configuration (state_layout.h)
   double margin = 0.0;  ///< balance margin of the step's support
-  /// \brief The part rests here before moving on: a root or a contact switch (the start
-  ///        tree's sense of time).
+  /// \brief The part rests here before moving on: a root or a contact switch, or a move
+  ///        from rest that slips no slider more than 0.1 mm (the start tree's sense of time).
   bool rest = false;
 };
+
+/// \brief Phase runs of a path: 1 plus the changes of contact set between waypoints.
+int phaseRuns(const std::vector<SupportStep>& steps);
+/// \brief Length of a path in the searches' metric (poseDistance).
+double pathLength(const std::vector<SupportStep>& steps, double length_scale);
 
 /// \brief Settings of SupportSearch (file comment).
 struct SupportSearchSettings {
@@ -126,6 +131,19 @@ class SupportSearch {
   /// \brief Cells blocked so far.
   std::size_t blockedCount() const { return blocked_.size(); }
 
+  /// \brief The anchor of a pivot set at `pose` (the tip where it touches); true without
+  ///        a pivot.
+  bool anchorFor(const JigPose& pose, const ContactSet& set, PivotAnchor& anchor);
+  /// \brief The support of `set` at `pose` reached from `from` (a move when the sets are
+  ///        equal, else a switch at rest); false when it is blocked or not valid, or when a
+  ///        move from rest does not break away. `backward`: the move extends the goal tree,
+  ///        so it runs backwards in time and starts no run (the caller checks breakaway).
+  ///        On false, refusal_ holds the rule broken.
+  bool stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
+              const PivotAnchor& anchor, SupportStep& out, bool backward = false);
+  /// \brief Why the last stepTo() refused.
+  SupportRule refusal() const { return refusal_; }
+
   SupportGeometry& geometry() { return geometry_; }
   const SupportSearchSettings& settings() const { return settings_; }
 
@@ -139,17 +157,6 @@ class SupportSearch {
   };
   /// \brief The lattice cell of a pose and a contact set (states are kept one per key).
   CellKey key(const JigPose& pose, const ContactSet& set) const;
-  /// \brief The anchor of a pivot set at `pose` (the tip where it touches); true without
-  ///        a pivot.
-  bool anchorFor(const JigPose& pose, const ContactSet& set, PivotAnchor& anchor);
-  /// \brief The support of `set` at `pose` reached from `from` (a move when the sets are
-  ///        equal, else a switch at rest); false when it is blocked or not valid, or when a
-  ///        move from rest does not break away. `backward`: the move extends the goal tree,
-  ///        so it runs backwards in time and starts no run (the caller checks breakaway).
-  ///        On false, refusal_ holds the rule broken.
-  bool stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
-              const PivotAnchor& anchor, SupportStep& out, bool backward = false);
-
   const RbsfModel& model_;
   SupportSearchSettings settings_;
   SupportGeometry geometry_;
