@@ -1,6 +1,7 @@
 #include "rbsf/planner/pivot_turn_search.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <queue>
@@ -81,6 +82,8 @@ std::vector<SupportStep> PivotTurnSearch::finish(const SupportStep& at, double p
 
 SupportPath PivotTurnSearch::search(const Pose& start, double start_theta, const Pose& goal,
                                     const std::atomic<bool>* cancel) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point started = Clock::now();
   SupportPath result;
   SupportGeometry& geometry = search_.geometry();
   const SupportSearchSettings& ss = search_.settings();
@@ -136,9 +139,10 @@ SupportPath PivotTurnSearch::search(const Pose& start, double start_theta, const
   };
   int best_runs = 0;
   double best_length = 0.0;
-  bool budget_out = false;
+  bool budget_out = false, timed_out = false;
   long stop_at = settings_.max_expansions;  // after the first path: search_on times its cost
-  for (int k = 0; k < m && !budget_out && !(result.found && result.expansions >= stop_at); ++k) {
+  for (int k = 0;
+       k < m && !budget_out && !timed_out && !(result.found && result.expansions >= stop_at); ++k) {
     PivotAnchor anchor;
     anchor.finger = k;
     if (!placed.touches(k) ||
@@ -194,9 +198,15 @@ SupportPath PivotTurnSearch::search(const Pose& start, double start_theta, const
         budget_out = true;
         break;
       }
-      if ((result.expansions & 255) == 0 && cancel != nullptr && cancel->load()) {
-        result.message = "stopped";
-        return result;
+      if ((result.expansions & 255) == 0) {
+        if (cancel != nullptr && cancel->load()) {
+          result.message = "stopped";
+          return result;
+        }
+        if (std::chrono::duration<double>(Clock::now() - started).count() > settings_.time_limit) {
+          timed_out = true;
+          break;
+        }
       }
       const SupportStep& s = node.step;
       if (std::abs(s.pose.psi - psi_goal) <= 0.5 * a + 1e-9 &&
@@ -255,9 +265,10 @@ SupportPath PivotTurnSearch::search(const Pose& start, double start_theta, const
     }
   }
   if (!result.found)
-    result.message = budget_out ? "no simple turn within " +
-                                      std::to_string(settings_.max_expansions) + " expansions"
-                                : "no pivot finger turns the part onto the goal in one pivot";
+    result.message = timed_out    ? "no simple turn within the time limit"
+                     : budget_out ? "no simple turn within " +
+                                        std::to_string(settings_.max_expansions) + " expansions"
+                                  : "no pivot finger turns the part onto the goal in one pivot";
   return result;
 }
 

@@ -90,11 +90,12 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
     SupportSearchSettings ss = settings_.search;
     ss.support.balance.friction_use = use;
     SupportSearch search(model_, ss);
-    PivotTurnSettings ps = settings_.simple_turn;
-    if (settings_.max_expansions > 0)
-      ps.max_expansions = std::min(ps.max_expansions, settings_.max_expansions - expansions_);
-    PivotTurnSearch simple(search, ps);
+    PivotTurnSearch simple(search, settings_.simple_turn);
     for (int n = 0; n < std::max(1, settings_.max_paths) && !runs && budgetLeft(); ++n) {
+      simple.setTimeLimit(timeLeft());
+      if (settings_.max_expansions > 0)
+        simple.setMaxExpansions(
+            std::min(settings_.simple_turn.max_expansions, settings_.max_expansions - expansions_));
       const SupportPath path =
           simple.search(problem.start, problem.start_theta, problem.goal, settings_.cancel);
       expansions_ += path.expansions;

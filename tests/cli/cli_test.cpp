@@ -427,6 +427,45 @@ TEST(PlanReorientation, ASupportPathWhoseRunDropsThePartIsApproximateAndSaysSo) 
   EXPECT_GT(j["certificate"]["holding"]["longest_free"].get<double>(), 0.1);
 }
 
+TEST(PlanReorientation, TheMainJobCertifiesItsTurnAndExitsZero) {
+  // scripts/rbsf.sh run's command (README "Quick start"), with its budgets: the -45 degree
+  // turn's support plan certifies on its first 64 trials and the tool exits 0.
+  const std::string out = writeTemp("main_job.json", "");
+  const Result r = run(kPlan + " --cell " + kCells +
+                       "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-45deg --time-limit 300"
+                       " --max-expansions 100000 --quiet --out " +
+                       out);
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(slurp(out));
+  EXPECT_EQ(j["planner"], "support");
+  EXPECT_TRUE(j["certificate"]["certified"].get<bool>());
+  EXPECT_GE(j["certificate"]["lower_bound"].get<double>(), 0.95);
+}
+
+TEST(PlanReorientation, SimpleTurnsAreSearchedFirstWhenAskedForWithinTheBudget) {
+  // --simple-turns 0.82: the one-pivot quarter turn is found and run first (its run drops the
+  // part, so exit 3); the planner's expansions stay within --max-expansions. A share outside
+  // (0, 1] is refused with exit 2, naming the option.
+  const std::string out = writeTemp("simple_turns.json", "");
+  const Result r = run(kPlan + " --cell " + kCells +
+                       "default.yaml --start 0.1,0.40,0 --goal=-0.21,0.43,90deg --planner support"
+                       " --simple-turns 0.82 --time-limit 3600 --max-expansions 12000 --quiet"
+                       " --trials 2 --out " +
+                       out);
+  ASSERT_EQ(r.status, 3) << r.out << r.err;
+  EXPECT_NE(r.out.find("support path: sticking forces within 0.82 of the friction cone"),
+            std::string::npos)
+      << r.out;
+  const auto j = nlohmann::json::parse(slurp(out));
+  EXPECT_LE(j["propagations"].get<long>(), 12001);
+  const Result bad =
+      run(kPlan + " --cell " + kCells +
+          "default.yaml --start 0.1,0.40,0 --goal=-0.21,0.43,90deg --simple-turns 1.5 --out " +
+          writeTemp("simple_turns_bad.json", ""));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("--simple-turns"), std::string::npos) << bad.err;
+}
+
 TEST(PlanReorientation, TheSameBudgetGivesTheSameFilesOnAnIdleAndOnALoadedMachine) {
   // Budgets, not the clock, end these searches: the support planner's expansions and one
   // kinodynamic search's propagations (fewer than it needs to reach the goal). Each command

@@ -26,8 +26,9 @@
 /// to the goal by a rigid run. Of the paths found (one per pivot finger) the one with the
 /// fewest phase runs, then the shortest, is kept.
 ///
-/// Cells blocked in the SupportSearch are not entered here either. Deterministic: a budget
-/// in lattice expansions, no wall clock. Analysis-time code (allocates).
+/// Cells blocked in the SupportSearch are not entered here either. Deterministic: the same
+/// inputs give the same path, and a budget in expansions gives it on any machine where the
+/// time limit does not bind first. Analysis-time code (allocates).
 
 #include <atomic>
 #include <vector>
@@ -42,6 +43,7 @@ struct PivotTurnSettings {
   double stroke_step = 0.015;             ///< the pivot's stroke lattice [m]
   double heuristic_weight = 2.0;          ///< weighted A* (>= 1)
   long max_expansions = 60000;            ///< lattice nodes expanded, every finger together
+  double time_limit = 30.0;               ///< wall time [s]; the budget above is the machine's
 };
 
 /// \brief The search of the file comment; one per thread. Uses `search`'s geometry, steps,
@@ -56,6 +58,10 @@ class PivotTurnSearch {
   SupportPath search(const Pose& start, double start_theta, const Pose& goal,
                      const std::atomic<bool>* cancel = nullptr);
 
+  /// \brief The expansions of the next search().
+  void setMaxExpansions(long expansions) { settings_.max_expansions = expansions; }
+  /// \brief The wall time of the next search() [s].
+  void setTimeLimit(double seconds) { settings_.time_limit = seconds; }
   const PivotTurnSettings& settings() const { return settings_; }
 
  private:
