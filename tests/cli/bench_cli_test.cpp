@@ -98,6 +98,33 @@ TEST(RbsfBench, DefaultSuiteEndToEndWithPlannerArenaDatabase) {
   EXPECT_FALSE(fs::exists(out + "/.runs"));
 }
 
+TEST(RbsfBench, TheSupportPlannerRunsBesideKpieceOnTheSameProblem) {
+  // The 30 degree turn alone, the support planner (an ompl::base::Planner) and KPIECE1 one
+  // run each: both solve; the support run's path passes OMPL's check, its length is its plan's
+  // duration (within the one control its last, shorter segment is rounded up to), and it
+  // reports its expansions instead of propagations.
+  const std::string out = scratch("support");
+  fs::create_directories(out);
+  const std::string suite = out + "/suite.yaml";
+  std::ofstream(suite) << "problems:\n  - name: 30deg\n    cell: " << RBSF_SOURCE_DIR
+                       << "/cells/default.yaml\n    start: 0.1,0.40,0\n"
+                          "    goal: 0.1,0.40,-30deg\n";
+  const Result r =
+      run("--problems " + suite + " --planners Support,KPIECE1 --runs 1 --time-limit 600 --out " +
+          out + "/bench");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string db = out + "/bench/benchmark.db";
+  EXPECT_EQ(sql(db, "SELECT COUNT(*) FROM runs WHERE solved = 1;"), "2\n");
+  EXPECT_EQ(sql(db,
+                "SELECT correct_solution, abs(solution_length - solution_duration) < 0.005, "
+                "expansions > 0, propagations FROM runs JOIN plannerConfigs ON "
+                "runs.plannerid = plannerConfigs.id WHERE plannerConfigs.name LIKE '%Support%';"),
+            "1|1|1|0\n");
+  const Result bad = run("--problems " + suite + " --planners Supprot --out " + out + "/bad");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("Support"), std::string::npos) << bad.err;
+}
+
 TEST(RbsfBench, ShardsUnionIsTheRunList) {
   const std::string args = "--problems " + kSuite + " --planners KPIECE1,RRT,SST --runs 5 --list";
   const Result whole = run(args);

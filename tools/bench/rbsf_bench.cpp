@@ -57,9 +57,9 @@ std::vector<std::string> parsePlanners(const std::string& text) {
   std::istringstream in(text);
   for (std::string name; std::getline(in, name, ',');) {
     const auto& known = planner::plannerNames();
-    if (std::find(known.begin(), known.end(), name) == known.end())
+    if (name != kSupportPlanner && std::find(known.begin(), known.end(), name) == known.end())
       throw InputError("--planners: unknown planner '" + name +
-                       "' (choose from KPIECE1, RRT, SST, EST, PDST)");
+                       "' (choose from KPIECE1, RRT, SST, EST, PDST, Support)");
     if (std::find(out.begin(), out.end(), name) != out.end())
       throw InputError("--planners: '" + name + "' is listed twice");
     out.push_back(name);
@@ -337,7 +337,8 @@ int run(int argc, char** argv) {
                  "problem suite (YAML), e.g. cells/problems/default.yaml");
   app.add_option(
       "--planners", o.planners,
-      "comma-separated planners: KPIECE1, RRT, SST, EST, PDST (default KPIECE1,RRT,SST,PDST)");
+      "comma-separated planners: KPIECE1, RRT, SST, EST, PDST, Support (the support planner, "
+      "support_ompl_planner.h) (default KPIECE1,RRT,SST,PDST)");
   app.add_option("--runs", o.runs, "runs per problem and planner (default 10)");
   app.add_option("--time-limit", o.time_limit, "seconds per run (default 30)");
   app.add_option("--jobs", o.jobs, "runs in parallel (default 1)");

@@ -13,6 +13,7 @@
 
 #include "rbsf/bench/benchmark_log.h"
 #include "rbsf/dynamics/atomic_file.h"
+#include "rbsf/planner/support_ompl_planner.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 #include "rbsf/trajopt/plan_refinement.h"
 
@@ -78,8 +79,16 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
                const RunSettings& rs, const std::string& log_path) {
   ompl::RNG::setSeed(spec.seed);
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  // The support planner runs on the same setup, its propagation step a support plan's
+  // control period and without the kinodynamic search's decisive-modes rule
+  // (support_ompl_planner.h); the setup's own planner is then replaced.
+  const bool support = spec.planner == kSupportPlanner;
   planner::PlannerSettings s;
-  s.planner = spec.planner;
+  s.planner = support ? "KPIECE1" : spec.planner;
+  if (support) {
+    s.steps_per_control = planner::SupportOmplPlanner::kControlSteps;
+    s.decisive_modes.enabled = false;
+  }
   s.time_limit = rs.time_limit;
   s.seed = spec.seed;
   s.position_tolerance = bp.position_tolerance;
@@ -87,13 +96,19 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
   planner::ReorientationPlanner rp(model, s);
   const planner::PlannerSetup setup = rp.setup(bp.problem);
   oc::SimpleSetup& ss = *setup.simple_setup;
+  std::shared_ptr<planner::SupportOmplPlanner> support_planner;
+  if (support) {
+    support_planner =
+        std::make_shared<planner::SupportOmplPlanner>(ss.getSpaceInformation(), model);
+    ss.setPlanner(support_planner);
+  }
 
   ompl::tools::Benchmark benchmark(ss, bp.name);
   benchmark.addPlanner(ss.getPlanner());
   benchmark.setPostRunEvent([&](const ob::PlannerPtr&, ompl::tools::Benchmark::RunProperties& run) {
     // rbsf's columns exist in every run (empty: NULL), also when no run solved.
-    for (const char* key :
-         {"best goal distance REAL", "solution duration REAL", "path mismatch REAL"})
+    for (const char* key : {"best goal distance REAL", "solution duration REAL",
+                            "path mismatch REAL", "expansions INTEGER"})
       run[key] = "";
     if (rs.optimize)
       for (const char* key :
@@ -120,9 +135,16 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
     if (time > 0.0) run["propagations per second REAL"] = num(static_cast<double>(props) / time);
     if (std::isfinite(setup.goal->bestDistance()))
       run["best goal distance REAL"] = num(setup.goal->bestDistance());
+    if (support) {  // its propagations only replay its plan into the path
+      run["propagations INTEGER"] = "0";
+      run["expansions INTEGER"] = std::to_string(support_planner->expansions());
+    }
     if (!pdef->hasExactSolution()) return;
     plan::Plan plan;
-    if (!rp.makePlan(bp.problem, setup, time, plan)) return;
+    if (support)
+      plan = support_planner->lastPlan();
+    else if (!rp.makePlan(bp.problem, setup, time, plan))
+      return;
     run["solution duration REAL"] = num(plan.duration());
     run["path mismatch REAL"] = num(plan.path_mismatch);
     if (!rs.optimize) return;

@@ -36,6 +36,11 @@ class PoseGoal : public ompl::base::GoalRegion {
   /// \brief True once isSatisfied has accepted a state: within the region and supported.
   ///        (bestDistance() <= 1 alone may come from a part falling through the goal pose.)
   bool reached() const { return reached_; }
+  /// \brief The goal pose, its tolerances ([m], [rad]) and whether its angle is a total turn.
+  const Pose& pose() const { return goal_; }
+  double positionTolerance() const { return position_tolerance_; }
+  double angleTolerance() const { return angle_tolerance_; }
+  bool absoluteAngle() const { return absolute_angle_; }
 
  private:
   Pose goal_;

@@ -58,6 +58,8 @@ class SimPropagator : public ompl::control::StatePropagator {
   std::uint64_t steps() const { return steps_; }
   /// \brief Number of propagation steps refused by the decisive-modes rule so far.
   std::uint64_t indecisive() const { return indecisive_; }
+  /// \brief The decisive-modes rule it applies.
+  const DecisiveModes& rule() const { return rule_; }
 
  private:
   const Simulator& simulator_;

@@ -16,6 +16,9 @@
 ///     simulator steps of those propagations; `propagations per second REAL`: propagations
 ///     over OMPL's `time`;
 ///   - `best goal distance REAL`: least goal distance reached (tolerance units, <= 1: goal);
+///   - the support planner (kSupportPlanner, support_ompl_planner.h): `expansions INTEGER`
+///     of its searches, and 0 propagations (it only propagates to replay its plan into the
+///     path); its exact solutions' plan is its own;
 ///   - exact solutions: `solution duration REAL` (seconds of motion of the plan), `path
 ///     mismatch REAL` (re-simulated plan against the planner's states);
 ///   - with --optimize, exact solutions, the product's refinement (trajopt::refinePlan:
@@ -34,6 +37,9 @@
 #include "rbsf/bench/run_list.h"
 
 namespace rbsf::bench {
+
+/// \brief The support planner's name in --planners (the others: planner::plannerNames()).
+inline const std::string kSupportPlanner = "Support";
 
 /// \brief Settings shared by every run.
 struct RunSettings {
