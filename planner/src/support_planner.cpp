@@ -99,7 +99,11 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
       const SupportPath path =
           simple.search(problem.start, problem.start_theta, problem.goal, settings_.cancel);
       expansions_ += path.expansions;
-      if (!path.found || !tryPath(path, search, use)) break;
+      if (!path.found) {
+        why = path.message;
+        break;
+      }
+      if (!tryPath(path, search, use)) break;
     }
   }
   for (double use : settings_.friction_uses) {

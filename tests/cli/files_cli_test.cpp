@@ -53,6 +53,25 @@ TEST(OutputFiles, AnOutputNamingTheCellIsRefusedAndTheCellKept) {
   }
 }
 
+TEST(OutputFiles, AnOutputThatIsTheCellByAnotherNameIsRefusedAndTheCellKept) {
+  // Names the path comparison cannot tell apart; only the file's identity (device and inode)
+  // can: a hard link to the cell as the output, and the cell given through a symbolic link
+  // with the file itself as the output.
+  const std::string dir = tempDir("out_is_cell_linked");
+  const std::string cell = dir + "/c.yaml";
+  std::system(("cp " + kCells + "default.yaml " + cell + " && ln " + cell + " " + dir +
+               "/hard.json && ln -s c.yaml " + dir + "/soft.yaml")
+                  .c_str());
+  const std::string before = slurp(cell);
+  for (const auto& [input, output] :
+       {std::pair{cell, dir + "/hard.json"}, std::pair{dir + "/soft.yaml", cell}}) {
+    const Result r = run(kSmallPlan + " --cell " + input + " --out " + output);
+    EXPECT_EQ(r.status, 2) << input << " -> " << output << "\n" << r.err;
+    EXPECT_NE(r.err.find("is the input given to --cell"), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(cell), before);
+  }
+}
+
 TEST(OutputFiles, SimulateRefusesToWriteOverItsControls) {
   const std::string dir = tempDir("out_is_controls");
   const std::string controls = dir + "/controls.csv";

@@ -166,6 +166,10 @@ TEST(ProblemSuite, ShippedSuitesLoad) {
   EXPECT_NEAR(def[2].problem.goal.phi, M_PI, 1e-15);
   EXPECT_NEAR(def[0].angle_tolerance, 2.0 * M_PI / 180, 1e-15);
   EXPECT_EQ(def[0].cell_path, RBSF_SOURCE_DIR "/cells/default.yaml");
+  const auto quarter = loadProblemSuite(RBSF_SOURCE_DIR "/cells/problems/quarter.yaml");
+  ASSERT_EQ(quarter.size(), 2u);
+  EXPECT_NEAR(quarter[0].problem.goal.phi, M_PI / 2, 1e-15);
+  EXPECT_NEAR(quarter[1].problem.goal.phi, -M_PI / 2, 1e-15);
   const auto hard = loadProblemSuite(RBSF_SOURCE_DIR "/cells/problems/hard.yaml");
   ASSERT_EQ(hard.size(), 5u);
   int absolute = 0;
