@@ -33,8 +33,16 @@ done <"$list"
 [[ $stale == 0 ]] || exit 2
 
 echo "mutants: copying the tree to $work and building it (Release)"
-mkdir -p "$work/src"
-(cd "$root" && tar --exclude='./build*' --exclude=./.git -cf - .) | tar -xf - -C "$work/src"
+# Only files whose content changed are copied, each with a fresh time stamp: an object built
+# after a source's old time stamp must not pass for up to date.
+rm -rf "$work/stage" && mkdir -p "$work/stage" "$work/src"
+(cd "$root" && tar --exclude='./build*' --exclude=./.git -cf - .) | tar -xf - -C "$work/stage"
+(cd "$work/stage" && find . -type f) | while IFS= read -r f; do
+  if ! cmp -s "$work/stage/$f" "$work/src/$f"; then
+    mkdir -p "$(dirname "$work/src/$f")"
+    cp "$work/stage/$f" "$work/src/$f"
+  fi
+done
 cmake -S "$work/src" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DRBSF_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build "$work/build" -j "$jobs" >/dev/null
@@ -64,7 +72,7 @@ while IFS=$'\t' read -r file target tests original mutant what <&3; do
     verdict="caught"
   fi
   [[ "$verdict" == caught* ]] && caught=$((caught + 1))
-  cp "$root/$file" "$work/src/$file"
+  cp "$work/stage/$file" "$work/src/$file"
   printf '%-24s %-44s %s (%ss; tests: %s)\n' "$verdict" "$what" "$file" \
     "$(($(date +%s) - t0))" "$tests"
 done 3<"$list"
