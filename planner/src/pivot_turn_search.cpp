@@ -17,12 +17,12 @@ std::uint64_t latticeKey(int i, int j, int l, std::uint32_t touching) {
 }
 
 /// Whether a sliding contact of `set` slips one way in `before` and the other in `after`
-/// (each more than 1e-4 of a metre per step: a slider that barely moves does not turn back).
+/// (each more than kSlipStep: a slider that barely moves does not turn back).
 bool reverses(const VecC& before, const VecC& after, const ContactSet& set) {
   if (before.size() != after.size()) return false;
   for (int i = 0; i < before.size(); ++i)
     if (set.touches(i) && !set.sticks(i) && before[i] * after[i] < 0.0 &&
-        std::abs(before[i]) > 1e-4 && std::abs(after[i]) > 1e-4)
+        std::abs(before[i]) > kSlipStep && std::abs(after[i]) > kSlipStep)
       return true;
   return false;
 }
@@ -31,12 +31,6 @@ bool reverses(const VecC& before, const VecC& after, const ContactSet& set) {
 
 PivotTurnSearch::PivotTurnSearch(SupportSearch& search, PivotTurnSettings settings)
     : search_(search), settings_(settings) {}
-
-double PivotTurnSearch::moveCost(const SupportStep& a, const SupportStep& b) const {
-  const SupportSearchSettings& s = search_.settings();
-  return poseDistance(a.pose, b.pose, s.length_scale) *
-         (1.0 + s.margin_weight / (std::min(a.margin, b.margin) + 0.01));
-}
 
 std::vector<SupportStep> PivotTurnSearch::rigidRun(const SupportStep& from, double theta) {
   const double span = std::abs(theta - from.pose.theta) / settings_.angle_step;
@@ -122,7 +116,7 @@ SupportPath PivotTurnSearch::search(const Pose& start, double start_theta, const
         pose.theta = start_theta + dir * n * a;
         SupportStep next;
         if (!search_.stepTo(lead.steps.back(), pose, r.set, PivotAnchor{}, next)) break;
-        lead.g += moveCost(lead.steps.back(), next);
+        lead.g += moveCost(lead.steps.back(), next, ss);
         lead.steps.push_back(next);
         leads.push_back(lead);
       }
@@ -250,7 +244,7 @@ SupportPath PivotTurnSearch::search(const Pose& start, double start_theta, const
             // A slider whose slip turns back sticks on the way: that is a rest, not a move.
             next.slip = geometry.slipDirections(s.q, next.step.q);
             if (!s.rest && reverses(node.slip, next.slip, s.set)) continue;
-            next.g = node.g + moveCost(s, next.step);
+            next.g = node.g + moveCost(s, next.step, ss);
             push(next);
           }
       // At rest, fingers touch or let go; the pivot goes on about the same point.

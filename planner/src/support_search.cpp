@@ -18,6 +18,17 @@ JigPose lerp(const JigPose& a, const JigPose& b, double s) {
 
 }  // namespace
 
+bool slidersSlip(const ContactSet& set, const VecC& slip) {
+  for (int i = 0; i < slip.size(); ++i)
+    if (set.touches(i) && !set.sticks(i) && std::abs(slip[i]) > kSlipStep) return true;
+  return false;
+}
+
+double moveCost(const SupportStep& a, const SupportStep& b, const SupportSearchSettings& s) {
+  return poseDistance(a.pose, b.pose, s.length_scale) *
+         (1.0 + s.margin_weight / (std::min(a.margin, b.margin) + 0.01));
+}
+
 int phaseRuns(const std::vector<SupportStep>& steps) {
   int runs = 1;
   for (std::size_t k = 1; k < steps.size(); ++k) runs += steps[k].set != steps[k - 1].set ? 1 : 0;
@@ -100,9 +111,7 @@ bool SupportSearch::stepTo(const SupportStep& from, const JigPose& pose, const C
   out.margin = s.margin;
   // Sliders that have not slipped yet are still stuck: the run starts at the first move that
   // slips one, and breakaway is checked there.
-  bool still = set == from.set && from.rest && !backward;
-  for (int i = 0; still && i < slip.size(); ++i)
-    if (set.touches(i) && !set.sticks(i) && std::abs(slip[i]) > 1e-4) still = false;
+  const bool still = set == from.set && from.rest && !backward && !slidersSlip(set, slip);
   out.rest = set != from.set || still;
   return true;
 }
@@ -283,10 +292,6 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
   }
   for (const JigPose& g : goals) seed(1, g);
 
-  auto moveCost = [&](const SupportStep& from, const SupportStep& to) {
-    return poseDistance(from.pose, to.pose, ls) *
-           (1.0 + settings_.margin_weight / (std::min(from.margin, to.margin) + 0.01));
-  };
   // A path: the forward chain to `f`, `middle`, then the backward chain from `b` (if any).
   // The first one found sets how long the search goes on (search_on); of those found, the
   // one with the fewest phase runs, then the shortest, is kept.
@@ -496,7 +501,7 @@ SupportPath SupportSearch::search(const Pose& start, double start_theta, const P
         refused(pose);
         return;
       }
-      add(node.g + moveCost(s, next));
+      add(node.g + moveCost(s, next, settings_));
     };
     // In the goal tree a switch away from s starts (in time) the run from s towards the
     // node s came from: its sliders must break away there.

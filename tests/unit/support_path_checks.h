@@ -8,8 +8,9 @@
 
 namespace rbsf::planner {
 
-/// Whether some sliding contact of `set` slips more than 0.1 mm in `slip`.
-inline bool slidersSlip(const ContactSet& set, const VecC& slip) {
+/// Whether some sliding contact of `set` slips more than 0.1 mm in `slip`. Written here
+/// again on purpose (planner::slidersSlip is what these checks test, not their oracle).
+inline bool anySliderSlips(const ContactSet& set, const VecC& slip) {
   for (int i = 0; i < slip.size(); ++i)
     if (set.touches(i) && !set.sticks(i) && std::abs(slip[i]) > 1e-4) return true;
   return false;
@@ -28,7 +29,7 @@ inline std::vector<SupportStep> runStartsThatStayStuck(SupportGeometry& geometry
     if (i > 0 && path.steps[i - 1].set != a.set) resting = true;
     if (a.set != b.set) continue;
     const VecC slip = geometry.slipDirections(a.q, b.q);
-    if (!resting || !slidersSlip(a.set, slip)) continue;
+    if (!resting || !anySliderSlips(a.set, slip)) continue;
     resting = false;
     if (!geometry.breaksAway(a.q, a.set, slip)) out.push_back(a);
   }

@@ -72,8 +72,6 @@ class PivotTurnSearch {
   ///        part angle psi and stroke l, then a rigid run to base angle theta; empty when none
   ///        is valid.
   std::vector<SupportStep> finish(const SupportStep& at, double psi, double theta, double l);
-  /// \brief Normalised length of a move, weighted by the lower margin of its ends.
-  double moveCost(const SupportStep& a, const SupportStep& b) const;
 
   SupportSearch& search_;
   PivotTurnSettings settings_;

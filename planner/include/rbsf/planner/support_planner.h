@@ -48,8 +48,9 @@ struct SupportPlannerSettings {
   ///        attempt ends without a path whose run ends on the goal.
   std::vector<double> friction_uses = {0.45, 0.6};
   /// \brief The friction uses at which simple turns (pivot_turn_search.h) are searched,
-  ///        before any general search (default none: on the default cell their runs do not
-  ///        yet hold the part, docs/notes/2026-11-27-one-pivot-turns.md).
+  ///        before any general search (default none: on the default cell their pivots slide
+  ///        two tips at once, which the contact-force law does not yet carry from rest, so
+  ///        they add search time without a certified plan).
   std::vector<double> simple_turn_friction_uses;
   PivotTurnSettings simple_turn;  ///< the simple turns' lattice and budget
   /// \brief The nominal run departs when the part is this far from the reference [m]...

@@ -69,6 +69,13 @@ struct SupportStep {
   bool rest = false;
 };
 
+/// \brief A sliding contact slips in a move when it moves more than this along its tip;
+///        less leaves it stuck (SupportStep::rest) [m].
+constexpr double kSlipStep = 1e-4;
+/// \brief Whether some sliding contact of `set` slips more than kSlipStep in `slip`
+///        (SupportGeometry::slipDirections).
+bool slidersSlip(const ContactSet& set, const VecC& slip);
+
 /// \brief Phase runs of a path: 1 plus the changes of contact set between waypoints.
 int phaseRuns(const std::vector<SupportStep>& steps);
 /// \brief Length of a path in the searches' metric (poseDistance).
@@ -91,6 +98,10 @@ struct SupportSearchSettings {
   double time_limit = 30.0;  ///< wall time [s]
   SupportSettings support;
 };
+
+/// \brief The searches' cost of the move from `a` to `b`: its length (poseDistance over
+///        `s.length_scale`) times 1 + margin_weight / (the lower margin of its ends + 0.01).
+double moveCost(const SupportStep& a, const SupportStep& b, const SupportSearchSettings& s);
 
 /// \brief Outcome of SupportSearch::search().
 struct SupportPath {
