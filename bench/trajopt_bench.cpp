@@ -111,12 +111,12 @@ int run(int argc, char** argv) {
       std::size_t planned_segments = 0;
       const rbsf::plan::RefineStep step = rbsf::trajopt::refinementStep(
           optimizer, [&](const rbsf::trajopt::RefineOutcome& r) { out = r; });
-      ps.refine = [&](const rbsf::plan::Plan& plan, const rbsf::plan::CertificateSettings& cs,
-                      bool& kept, std::string& note) {
+      ps.refine = [&](const rbsf::plan::Plan& plan, const rbsf::plan::PlanMargins& margins,
+                      const rbsf::plan::CertificateSettings& cs, bool& kept, std::string& note) {
         planned_phases = plan.phaseSequence();
         planned_segments = plan.segments.size();
         const std::clock_t cpu0 = std::clock();
-        rbsf::plan::Plan result = step(plan, cs, kept, note);
+        rbsf::plan::Plan result = step(plan, margins, cs, kept, note);
         cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
         refined = true;
         return result;

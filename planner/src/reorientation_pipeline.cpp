@@ -92,13 +92,13 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
   plan::Plan best;
   // Judge one attempt's plan (refine, certify), keep it when it is the best so far.
   auto judge = [&](PipelineAttempt& a, plan::Plan&& plan, Clock::time_point start,
-                   bool may_refine) {
+                   const plan::PlanMargins& margins) {
     a.found = true;
     a.exact = plan.status == plan::PlanStatus::kExact;
     if (s.on_found) s.on_found(a, plan);
-    if (may_refine && a.exact && s.refine) {
+    if (a.exact && s.refine) {
       stage(PipelineStage::kRefining, a.method, a.seed);
-      plan = s.refine(plan, certificate, a.refined, a.note);
+      plan = s.refine(plan, margins, certificate, a.refined, a.note);
     } else {
       stage(PipelineStage::kCertifying, a.method, a.seed);
       plan.certificate = certify(model_, plan, certificate, nullptr, s.planner.cancel);
@@ -142,7 +142,11 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     a.paths_run = support.pathsRun();
     a.reach = support.reach();
     if (found && !cancelled()) {
-      judge(a, std::move(plan), start, false);
+      plan::PlanMargins margins;
+      margins.support = true;
+      margins.friction_use = a.friction_use;
+      margins.normal_margin = ss.search.support.balance.normal_margin;
+      judge(a, std::move(plan), start, margins);
     } else {
       nothing(a, plan, cancelled() ? "cancelled" : support.message());
     }
@@ -185,7 +189,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
       break;
     }
     if (found) {
-      judge(a, std::move(plan), start, true);
+      judge(a, std::move(plan), start, plan::PlanMargins{});
     } else {
       nothing(a, plan, "no path");
     }

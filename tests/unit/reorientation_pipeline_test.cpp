@@ -63,9 +63,14 @@ TEST(ReorientationPipeline, AutoTriesSupportsFirstAndACertifiedPlanEndsTheRun) {
   std::vector<PipelineStage> stages;
   s.on_stage = [&](PipelineStage st, const std::string&, std::uint32_t) { stages.push_back(st); };
   int refinements = 0;
-  s.refine = [&](const Plan& p, const CertificateSettings&, bool&, std::string&) {
+  std::vector<PlanMargins> margins;
+  s.refine = [&](const Plan& p, const PlanMargins& m, const CertificateSettings& c, bool&,
+                 std::string&) {
+    margins.push_back(m);
+    Plan kept = p;
+    kept.certificate = certify(model, p, c);
     ++refinements;
-    return p;
+    return kept;
   };
   const PipelineOutcome out = ReorientationPipeline(model, s).run(turn(-15));
   ASSERT_EQ(out.status, PipelineStatus::kCertified) << verdictText(out.plan.certificate);
@@ -73,9 +78,13 @@ TEST(ReorientationPipeline, AutoTriesSupportsFirstAndACertifiedPlanEndsTheRun) {
   EXPECT_EQ(out.chosen, 0);
   EXPECT_EQ(out.attempts[0].method, "support");
   EXPECT_EQ(out.plan.planner, "support");
-  EXPECT_EQ(refinements, 0);  // support plans are certified as found
-  EXPECT_EQ(stages, (std::vector<PipelineStage>{PipelineStage::kSupportSearch,
-                                                PipelineStage::kCertifying}));
+  // The support plan goes to the refinement with the margins it was planned with.
+  ASSERT_EQ(refinements, 1);
+  EXPECT_TRUE(margins[0].support);
+  EXPECT_EQ(margins[0].friction_use, out.attempts[0].friction_use);
+  EXPECT_EQ(margins[0].normal_margin, s.support.search.support.balance.normal_margin);
+  EXPECT_EQ(stages,
+            (std::vector<PipelineStage>{PipelineStage::kSupportSearch, PipelineStage::kRefining}));
   EXPECT_TRUE(out.plan.certificate.certified);
   EXPECT_FALSE(std::isfinite(out.best_distance));  // no kinodynamic search ran
   expectHandledNotThrown(out.plan, model.cell().motion_limits);
@@ -104,7 +113,9 @@ TEST(ReorientationPipeline, UncertifiedPlansGoOnSeedAfterSeedAndTheBestIsKept) {
   s.planner.seed = 3;
   s.max_attempts = 2;
   std::vector<std::uint32_t> refined_seeds;
-  s.refine = [&](const Plan& p, const CertificateSettings& c, bool& refined, std::string& note) {
+  s.refine = [&](const Plan& p, const PlanMargins& m, const CertificateSettings& c, bool& refined,
+                 std::string& note) {
+    EXPECT_FALSE(m.support);
     refined_seeds.push_back(p.seed);
     EXPECT_EQ(c.trial.position_tolerance, s.planner.position_tolerance);
     EXPECT_EQ(c.trials, 4);

@@ -48,8 +48,8 @@ TEST(TrajoptSchedule, SplitRunsHoldOnePhaseAndOneSimulatedModePerContact) {
   const plan::Plan& plan = test::shortPlan();
   Schedule split, letters;
   std::string why;
-  ASSERT_TRUE(buildSchedule(model, plan, 60, true, split, why)) << why;
-  ASSERT_TRUE(buildSchedule(model, plan, 60, false, letters, why)) << why;
+  ASSERT_TRUE(buildSchedule(model, plan, 60, RunCut::kContactModes, split, why)) << why;
+  ASSERT_TRUE(buildSchedule(model, plan, 60, RunCut::kPhaseLetters, letters, why)) << why;
   // The fixture's U run holds a lift-off, so splitting adds a run.
   ASSERT_GT(split.runs.size(), letters.runs.size());
 
@@ -85,8 +85,8 @@ TEST(TrajoptSchedule, SplitRunsHoldOnePhaseAndOneSimulatedModePerContact) {
 
   // Too few intervals for the finer runs: one run per phase letter, as without splitting.
   Schedule coarse;
-  ASSERT_TRUE(
-      buildSchedule(model, plan, 2 * static_cast<int>(letters.runs.size()), true, coarse, why))
+  ASSERT_TRUE(buildSchedule(model, plan, 2 * static_cast<int>(letters.runs.size()),
+                            RunCut::kContactModes, coarse, why))
       << why;
   EXPECT_EQ(coarse.runs.size(), letters.runs.size());
 }

@@ -5,6 +5,11 @@
 #include <string>
 
 #include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/contact_balance.h"
+#include "rbsf/dynamics/contact_roles.h"
+#include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/simulator.h"
+#include "rbsf/plan/plan.h"
 #include "rbsf/planner/reorientation_planner.h"
 
 namespace rbsf::trajopt::test {
@@ -30,6 +35,38 @@ inline const plan::Plan& shortPlan() {
     p.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
     plan::Plan out;
     if (!planner.solve(p, out)) throw std::runtime_error("planner failed on the 15 degree turn");
+    return out;
+  }();
+  return plan;
+}
+
+/// \brief A support plan whose roles are stated (as the support planner states them): the
+///        default part held on its three tips for 0.1 s ("SSS"), then with finger 1 lifted
+///        ("LSS") for 0.1 s, each under the input that holds the first (ContactBalancer);
+///        the goal is where it ends. Its runs stick three tips, so the least-norm rows
+///        (internal_force_constraint.h) are in the problem.
+inline const plan::Plan& threeTipPlan() {
+  static const plan::Plan plan = [] {
+    const RbsfModel& model = defaultModel();
+    plan::Plan out;
+    out.status = plan::PlanStatus::kExact;
+    out.planner = "support";
+    out.joint_feedback = true;
+    out.start = {0.1, 0.40, 0.0};
+    out.q0 = restingConfiguration(model, out.start, 0.0);
+    ModelData data(model.numFingers());
+    const VecU tau = ContactBalancer(model).statics(out.q0, ContactSet{0b111u, 0b111u}, data).tau;
+    for (const char* roles : {"SSS", "SSS", "LSS", "LSS"}) {
+      plan::PlanSegment seg;
+      seg.steps = 50;
+      seg.duration = seg.steps * out.simulator.time_step;
+      seg.tau = tau;
+      seg.contacts = parseRoles(roles, model.numFingers(), "roles");
+      out.segments.push_back(seg);
+    }
+    out.samples = plan::simulateSegments(Simulator(model, out.simulator), out.q0, out.segments, 10);
+    const VecQ& end = out.samples.back().q;
+    out.goal = {end[layout::kX], end[layout::kY], end[layout::kPhi]};
     return out;
   }();
   return plan;

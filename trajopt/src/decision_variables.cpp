@@ -17,9 +17,16 @@ DecisionVariables::DecisionVariables(const RbsfModel& model, const DecisionLayou
       schedule_(schedule),
       plan_(plan),
       min_scale_(settings.duration_min_scale),
-      max_scale_(settings.duration_max_scale) {
+      max_scale_(settings.duration_max_scale),
+      slide_min_scale_(settings.slide_duration_min_scale),
+      normal_floor_(settings.normal_floor * model.cell().object.mass *
+                    std::max(model.cell().gravity, 1.0)),
+      motion_limits_(settings.motion_limits),
+      tube_position_(settings.tube_position),
+      tube_angle_(settings.tube_angle) {
   const double final_phi = plan.samples.back().q[layout::kPhi];
   goal_phi_ = final_phi + std::remainder(plan.goal.phi - final_phi, 2.0 * M_PI);
+  planned_ = plannedGuess();
 }
 
 void DecisionVariables::bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) const {
@@ -39,9 +46,32 @@ void DecisionVariables::bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) c
       lower[layout_.tau(k) + layout::fingerForce(i)] = -f.force_limit;
       upper[layout_.tau(k) + layout::fingerForce(i)] = f.force_limit;
       const ContactRole role = schedule_.forceRole(k, i);
-      lower[layout_.fn(k) + i] = 0.0;
+      const bool relied = schedule_.runOf(std::min(k, layout_.intervals() - 1)).relied[i];
+      lower[layout_.fn(k) + i] = role != ContactRole::kOff && relied ? normal_floor_ : 0.0;
       upper[layout_.fn(k) + i] = role == ContactRole::kOff ? 0.0 : kInfinity;
       if (role != ContactRole::kStick) lower[layout_.ft(k) + i] = upper[layout_.ft(k) + i] = 0.0;
+    }
+  }
+  // The tube: every knot's configuration near the plan's at the same share of its run.
+  for (int k = 0; k < K; ++k)
+    for (int a = 0; a < n; ++a) {
+      const bool angle = a == layout::kPhi || a == layout::kTheta;
+      const double r = angle ? tube_angle_ : tube_position_;
+      if (!(r > 0.0)) continue;
+      const int c = layout_.q(k) + a;
+      lower[c] = std::max(lower[c], planned_[c] - r);
+      upper[c] = std::min(upper[c], planned_[c] + r);
+    }
+  if (motion_limits_) {
+    const MotionLimits& ml = cell.motion_limits;
+    const double axis = ml.part_speed / std::sqrt(2.0);
+    for (int k = 0; k < K; ++k) {
+      for (int a : {layout::kX, layout::kY}) {
+        lower[layout_.v(k) + a] = -axis;
+        upper[layout_.v(k) + a] = axis;
+      }
+      lower[layout_.v(k) + layout::kPhi] = -ml.angular_speed;
+      upper[layout_.v(k) + layout::kPhi] = ml.angular_speed;
     }
   }
   for (int a = 0; a < n; ++a) {
@@ -53,7 +83,11 @@ void DecisionVariables::bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) c
   for (int a = 0; a < layout::kObjectDim; ++a)
     lower[layout_.q(K - 1) + a] = upper[layout_.q(K - 1) + a] = goal[a];
   for (int j = 0; j < layout_.runs(); ++j) {
-    lower[layout_.duration(j)] = min_scale_ * schedule_.runs[j].duration;
+    const PhaseRun& run = schedule_.runs[j];
+    const bool slides = std::any_of(run.slide_direction.begin(), run.slide_direction.end(),
+                                    [](int d) { return d != 0; });
+    lower[layout_.duration(j)] =
+        (slides ? std::max(min_scale_, slide_min_scale_) : min_scale_) * run.duration;
     upper[layout_.duration(j)] = max_scale_ * schedule_.runs[j].duration;
   }
 }
@@ -88,6 +122,12 @@ double DecisionVariables::knotTime(const Eigen::Ref<const Eigen::VectorXd>& z, i
 }
 
 Eigen::VectorXd DecisionVariables::initialGuess() const {
+  Eigen::VectorXd lower, upper;
+  bounds(lower, upper);
+  return planned_.cwiseMax(lower).cwiseMin(upper);
+}
+
+Eigen::VectorXd DecisionVariables::plannedGuess() const {
   const int m = model_.numFingers(), n = model_.configDim(), nu = model_.controlDim();
   const int K = layout_.knots(), N = layout_.intervals();
   Eigen::VectorXd z = Eigen::VectorXd::Zero(layout_.size());
@@ -146,9 +186,7 @@ Eigen::VectorXd DecisionVariables::initialGuess() const {
       z[layout_.xi(k) + i] = xi;
     }
   }
-  Eigen::VectorXd lower, upper;
-  bounds(lower, upper);
-  return z.cwiseMax(lower).cwiseMin(upper);
+  return z;
 }
 
 }  // namespace rbsf::trajopt

@@ -96,6 +96,11 @@ PlanOptimizer::PlanOptimizer(const RbsfModel& model, OptimizerSettings settings)
   require(std::isfinite(s.duration_max_scale) && s.duration_max_scale >= 1.0,
           "duration_max_scale must be finite and >= 1");
   require(s.cone_margin > 0.0 && s.cone_margin <= 1.0, "cone_margin must be in (0, 1]");
+  require(std::isfinite(s.tube_position) && s.tube_position >= 0.0 && std::isfinite(s.tube_angle) &&
+              s.tube_angle >= 0.0,
+          "tube_position and tube_angle must be finite and >= 0");
+  require(std::isfinite(s.normal_floor) && s.normal_floor >= 0.0,
+          "normal_floor must be finite and >= 0");
   require(std::isfinite(s.min_slip_rate) && s.min_slip_rate >= 0.0, "min_slip_rate must be >= 0");
   require(s.max_iterations >= 0, "max_iterations must be >= 0");
   require(s.tolerance > 0.0, "tolerance must be positive");

@@ -1,7 +1,9 @@
 #include "rbsf/trajopt/plan_refinement.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -66,8 +68,33 @@ Attempt solve(const PlanOptimizer& optimizer, const plan::Plan& plan) {
 
 }  // namespace
 
-RefineOutcome refinePlan(const PlanOptimizer& optimizer, const plan::Plan& plan,
-                         const RefineSettings& settings) {
+OptimizerSettings supportOptimizerSettings(OptimizerSettings base, const plan::PlanMargins& margins,
+                                           const SupportRefinement& support) {
+  base.stated_roles = true;
+  base.cone_margin = std::clamp(margins.friction_use, 1e-3, 1.0);
+  base.normal_floor = std::max(margins.normal_margin, 0.0);
+  base.keep_slide_direction = true;
+  base.min_slip_rate = support.min_slip_rate;
+  base.motion_limits = true;
+  base.least_norm = true;
+  base.tube_position = support.tube_position;
+  base.tube_angle = support.tube_angle;
+  base.duration_min_scale = support.duration_min_scale;
+  return base;
+}
+
+bool atLeastAsGood(const plan::Certificate& a, const plan::Certificate& b) {
+  return a.ran && (a.certified || !b.certified) && a.lower_bound >= b.lower_bound;
+}
+
+RefineOutcome refinePlan(const PlanOptimizer& given, const plan::Plan& plan,
+                         const RefineSettings& settings, const plan::PlanMargins& margins) {
+  // A support plan is refined by an optimiser of the same cell with its margins.
+  std::unique_ptr<PlanOptimizer> support;
+  if (margins.support)
+    support = std::make_unique<PlanOptimizer>(
+        given.model(), supportOptimizerSettings(given.settings(), margins, settings.support));
+  const PlanOptimizer& optimizer = support ? *support : given;
   const RbsfModel& model = optimizer.model();
   const std::atomic<bool>* cancel = optimizer.settings().cancel;
   RefineOutcome out;
@@ -97,13 +124,13 @@ RefineOutcome refinePlan(const PlanOptimizer& optimizer, const plan::Plan& plan,
   out.attempts = static_cast<int>(attempts.size());
   if (attempts.empty()) return out;
 
-  // The better certificate wins; the planner's plan is the first candidate.
+  // The better refinement, then against the planner's plan (file comment).
   int best = -1;
   for (int k = 0; k < out.attempts; ++k) {
     if (!certificates[k].ran) continue;
-    const plan::Certificate& incumbent = best < 0 ? out.planner_certificate : certificates[best];
-    if (plan::betterCertificate(certificates[k], incumbent)) best = k;
+    if (best < 0 || plan::betterCertificate(certificates[k], certificates[best])) best = k;
   }
+  if (best >= 0 && !atLeastAsGood(certificates[best], out.planner_certificate)) best = -1;
   std::ostringstream why;
   for (int k = 0; k < out.attempts; ++k) {
     if (k == best) continue;
@@ -115,7 +142,13 @@ RefineOutcome refinePlan(const PlanOptimizer& optimizer, const plan::Plan& plan,
       why << "not certified (cancelled)";
     else
       why << "its certificate (" << certificates[k].successes << "/" << certificates[k].trials
-          << ") is not better than the " << (best < 0 ? "planner's" : "chosen") << " plan's";
+          << ", lower bound " << certificates[k].lower_bound << ") is "
+          << (best < 0
+                  ? "short of the planner's plan's (" +
+                        std::string(out.planner_certificate.certified ? "certified"
+                                                                      : "not certified") +
+                        ", lower bound " + std::to_string(out.planner_certificate.lower_bound) + ")"
+                  : std::string("not better than the chosen one's"));
   }
   const int summary = best < 0 ? 0 : best;
   if (best >= 0) {
@@ -134,12 +167,12 @@ RefineOutcome refinePlan(const PlanOptimizer& optimizer, const plan::Plan& plan,
 
 plan::RefineStep refinementStep(const PlanOptimizer& optimizer,
                                 std::function<void(const RefineOutcome&)> report) {
-  return [&optimizer, report = std::move(report)](const plan::Plan& plan,
-                                                  const plan::CertificateSettings& certificate,
-                                                  bool& refined, std::string& note) {
+  return [&optimizer, report = std::move(report)](
+             const plan::Plan& plan, const plan::PlanMargins& margins,
+             const plan::CertificateSettings& certificate, bool& refined, std::string& note) {
     RefineSettings settings;
     settings.certificate = certificate;
-    RefineOutcome r = refinePlan(optimizer, plan, settings);
+    RefineOutcome r = refinePlan(optimizer, plan, settings, margins);
     if (report) report(r);
     refined = r.refined;
     note = r.reason;

@@ -16,6 +16,28 @@ int strength(ContactRole r) { return static_cast<int>(r); }
 // Wrapped difference b - a in (-pi, pi].
 double wrappedDelta(double a, double b) { return std::remainder(b - a, 2.0 * M_PI); }
 
+// The run's roles as the plan states them: S sticks; + and - slide the way the
+// re-simulation slid (its sign agrees with the role's on the plans the support planner
+// writes; the simulated foot points are what the collocation's xi continue); F touches
+// without friction and without direction (the plan does not rely on it); L is off. The
+// letter: C for two or more sticking, P for one, U for none.
+void statedRoles(int m, const VecC& xi_start, const VecC& xi_end, PhaseRun& run) {
+  int sticking = 0;
+  for (int i = 0; i < m; ++i) {
+    const rbsf::ContactRole r = run.planned[i];
+    const double d = wrappedDelta(xi_start[i], xi_end[i]);
+    run.role[i] = r == rbsf::ContactRole::kLifted  ? ContactRole::kOff
+                  : r == rbsf::ContactRole::kStick ? ContactRole::kStick
+                                                   : ContactRole::kSlide;
+    run.relied[i] = r == rbsf::ContactRole::kStick || slipSign(r) != 0;
+    const int sign = slipSign(r) == 0 ? 0 : (d > 1e-6 ? 1 : (d < -1e-6 ? -1 : 0));
+    run.slide_direction[i] = sign;
+    run.slide_rate[i] = sign == 0 ? 0.0 : std::abs(d) / run.duration;
+    sticking += run.role[i] == ContactRole::kStick;
+  }
+  run.phase = sticking >= 2 ? Phase::kC : (sticking == 1 ? Phase::kP : Phase::kU);
+}
+
 }  // namespace
 
 ContactRole Schedule::knotRole(int knot, int i) const {
@@ -25,8 +47,9 @@ ContactRole Schedule::knotRole(int knot, int i) const {
   return r;
 }
 
-bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals,
-                   bool split_by_contact_modes, Schedule& schedule, std::string& why) {
+bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals, RunCut cut,
+                   Schedule& schedule, std::string& why) {
+  const bool split_by_contact_modes = cut == RunCut::kContactModes;
   const int m = model.numFingers();
   schedule = Schedule{};
   if (plan.segments.empty()) {
@@ -91,17 +114,29 @@ bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals
   };
   // Runs: maximal sequences of segments with one phase letter and, when split, one
   // segment mode per contact.
+  // A plan that states its contacts' roles (support plans) is cut where they change: the
+  // roles are what the planner meant, the simulated letters flicker at hand-overs.
+  const bool stated = cut == RunCut::kStatedRoles;
+  if (stated && !std::all_of(plan.segments.begin(), plan.segments.end(),
+                             [](const plan::PlanSegment& g) { return planned(g.contacts); })) {
+    why = "the plan does not state every segment's contact roles";
+    return false;
+  }
   auto groupRuns = [&](bool split, std::vector<int>& first_segment) {
     first_segment.clear();
-    for (int s = 0; s < S; ++s)
-      if (s == 0 || plan.segments[s].phase != plan.segments[s - 1].phase ||
-          (split && segmentModes(s) != segmentModes(s - 1)))
-        first_segment.push_back(s);
+    for (int s = 0; s < S; ++s) {
+      const bool cut = stated
+                           ? plan.segments[s].contacts != plan.segments[std::max(s - 1, 0)].contacts
+                           : plan.segments[s].phase != plan.segments[std::max(s - 1, 0)].phase ||
+                                 (split && segmentModes(s) != segmentModes(s - 1));
+      if (s == 0 || cut) first_segment.push_back(s);
+    }
     first_segment.push_back(S);
   };
   std::vector<int> first_segment;
   groupRuns(split_by_contact_modes, first_segment);
-  if (split_by_contact_modes && intervals < 2 * (static_cast<int>(first_segment.size()) - 1))
+  if (!stated && split_by_contact_modes &&
+      intervals < 2 * (static_cast<int>(first_segment.size()) - 1))
     groupRuns(false, first_segment);  // too few intervals for the finer runs
 
   std::vector<Counts> counts;
@@ -119,6 +154,7 @@ bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals
         for (int mode = 0; mode < 3; ++mode) c[i][mode] += seg_counts[s][i][mode];
     }
     t += run.duration;
+    if (stated) run.planned = plan.segments[first_segment[j]].contacts;
     schedule.runs.push_back(run);
     counts.push_back(c);
     xi_start.push_back(xi_at[first_segment[j]]);
@@ -128,6 +164,10 @@ bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals
   const int R = static_cast<int>(schedule.runs.size());
   for (int j = 0; j < R; ++j) {
     PhaseRun& run = schedule.runs[j];
+    if (stated) {
+      statedRoles(m, xi_start[j], xi_end[j], run);
+      continue;
+    }
     const auto& cnt = counts[j];
     auto stickCount = [&](int i) { return cnt[i][static_cast<int>(ContactMode::kStick)]; };
     for (int i = 0; i < m; ++i) {
@@ -161,11 +201,13 @@ bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals
           ++sticking;
         }
     }
-    for (int i = 0; i < m; ++i)
+    for (int i = 0; i < m; ++i) {
+      run.relied[i] = run.role[i] != ContactRole::kOff;
       if (run.role[i] != ContactRole::kSlide) {
         run.slide_direction[i] = 0;
         run.slide_rate[i] = 0.0;
       }
+    }
   }
 
   if (intervals < 2 * R) {

@@ -7,6 +7,7 @@
 #include "rbsf/trajopt/contact_constraint.h"
 #include "rbsf/trajopt/effort_cost.h"
 #include "rbsf/trajopt/friction_cone_constraint.h"
+#include "rbsf/trajopt/internal_force_constraint.h"
 #include "rbsf/trajopt/smoothness_cost.h"
 #include "rbsf/trajopt/sticking_constraint.h"
 
@@ -15,8 +16,10 @@ namespace rbsf::trajopt {
 TrajectoryProblem::TrajectoryProblem(const RbsfModel& model, const plan::Plan& plan,
                                      const OptimizerSettings& settings)
     : model_(model) {
-  ok_ = buildSchedule(model, plan, settings.knots, settings.split_runs_by_contact_modes, schedule_,
-                      why_);
+  const RunCut cut = settings.stated_roles                  ? RunCut::kStatedRoles
+                     : settings.split_runs_by_contact_modes ? RunCut::kContactModes
+                                                            : RunCut::kPhaseLetters;
+  ok_ = buildSchedule(model, plan, settings.knots, cut, schedule_, why_);
   if (!ok_) return;
   layout_ = std::make_unique<DecisionLayout>(model.numFingers(), schedule_.intervals(),
                                              static_cast<int>(schedule_.runs.size()));
@@ -27,6 +30,8 @@ TrajectoryProblem::TrajectoryProblem(const RbsfModel& model, const plan::Plan& p
       *layout_, schedule_, settings.keep_slide_direction, settings.min_slip_rate));
   sets_.push_back(std::make_unique<FrictionConeConstraint>(
       *layout_, schedule_, model.cell().friction.mu_static, settings.cone_margin));
+  if (settings.least_norm)
+    sets_.push_back(std::make_unique<InternalForceConstraint>(model, *layout_, schedule_));
   costs_.push_back(std::make_unique<EffortCost>(model, *layout_, schedule_));
   if (settings.force_weight > 0.0)
     costs_.push_back(
@@ -100,6 +105,7 @@ plan::Plan TrajectoryProblem::toPlan(const ConstVectorRef& z, const plan::Plan& 
     seg.steps = static_cast<int>(std::lround(seg.duration / input.simulator.time_step));
     seg.tau = z.segment(layout_->tau(k), nu);
     seg.tau_end = z.segment(layout_->tau(k + 1), nu);
+    seg.contacts = schedule_.runs[j].planned;  // the roles the plan stated, if it did
     out.segments.push_back(seg);
   }
   for (int k = 0; k < layout_->knots(); ++k) {

@@ -7,8 +7,9 @@
 /// The order of attempts (Method::kAuto): the support planner first (support_planner.h:
 /// slow supports held by the joints, its own ladder of friction margins), then the
 /// kinodynamic planner (reorientation_planner.h) with seeds planner.seed, planner.seed + 1,
-/// ... Every exact kinodynamic plan goes through `refine` when one is given (the optimiser
-/// and its choice, trajopt/plan_refinement.h); every plan is certified (certificate.h).
+/// ... Every exact plan goes through `refine` when one is given (the optimiser and its
+/// choice, trajopt/plan_refinement.h; a support plan with the margins it was planned with,
+/// plan::PlanMargins); every plan is certified (certificate.h).
 /// The first certified plan ends the run. Otherwise attempts go on while the planning
 /// budget (planner.time_limit, all attempts' searches) lasts, and the best plan is kept:
 /// Certificate ranking (betterCertificate), an exact plan before an approximate one.
@@ -84,8 +85,8 @@ struct PipelineSettings {
   double min_attempt_time = 1.0;  ///< [s] no later kinodynamic search starts with less left
   /// \brief The trials (tolerances are set from `planner`; feedback as given).
   plan::CertificateSettings certificate;
-  /// \brief The refinement of each exact kinodynamic plan (trajopt::refinementStep);
-  ///        empty: plans are certified as found.
+  /// \brief The refinement of each exact plan (trajopt::refinementStep); empty: plans are
+  ///        certified as found.
   plan::RefineStep refine;
   /// \brief Called when a stage starts (progress lines).
   std::function<void(PipelineStage, const std::string& method, std::uint32_t seed)> on_stage;

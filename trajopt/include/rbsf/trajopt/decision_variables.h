@@ -21,7 +21,12 @@ struct OptimizerSettings;
 /// 0 otherwise (mu_k = 0, docs/model.md); q_0 = plan.q0, v_0 = 0
 /// (start at rest); object pose of q_N = the goal (x, y, phi; phi taken within pi of the
 /// plan's final angle), v_N = 0 (at rest at the end); T_j within
-/// [duration_min_scale, duration_max_scale] x the planned duration of run j.
+/// [duration_min_scale, duration_max_scale] x the planned duration of run j. With
+/// normal_floor > 0, the f_n of a contact the run relies on (PhaseRun::relied) at least
+/// normal_floor x m_o g0. With motion_limits, the cell's motion limits (motion_limits.h) at
+/// every knot: |phi'| <= angular_speed and |x'|, |y'| <= part_speed / sqrt(2) (the square
+/// inside the speed's circle: bounds instead of a quadratic row, a part slower than the
+/// limit in every direction).
 ///
 /// Initial guess: the planner's trajectory at the knot times (knots spread uniformly over
 /// each run's planned duration), the plan re-simulated step by step (plan.simulator.time_step): q,
@@ -53,7 +58,14 @@ class DecisionVariables {
   DecisionLayout layout_;
   const Schedule& schedule_;
   const plan::Plan& plan_;
-  double min_scale_, max_scale_;
+  double min_scale_, max_scale_, slide_min_scale_;
+  /// \brief The guess before it is clipped into the bounds (the tube's centre).
+  Eigen::VectorXd plannedGuess() const;
+
+  double normal_floor_;  ///< [N]
+  bool motion_limits_;
+  double tube_position_, tube_angle_;  ///< [m], [rad]; 0: no tube
+  Eigen::VectorXd planned_;            ///< plannedGuess()
   double goal_phi_;
 };
 

@@ -23,7 +23,29 @@ struct OptimizerSettings {
   double force_weight = 1e-3;
   double duration_min_scale = 0.5;  ///< each phase's duration within [min, max] x planned
   double duration_max_scale = 2.0;
+  /// \brief Runs in which a contact slides one way last at least this x planned (the larger
+  ///        of this and duration_min_scale): the law breaks sliders loose and keeps them
+  ///        slipping at its own pace, so a faster slide than the plan's is not followed.
+  double slide_duration_min_scale = 0.0;
   double cone_margin = 0.9;  ///< sticking forces kept within margin * mu_s
+  /// \brief Every contact a run relies on (stated S, + or -; without stated roles every
+  ///        contact that touches) pressed by at least this x m_o g0 [N/N]; 0: f_n >= 0.
+  double normal_floor = 0.0;
+  /// \brief The cell's motion limits at every knot (decision_variables.h): a refinement
+  ///        never plans faster than the certificate allows. Off by default: the
+  ///        kinodynamic plans refined are throws beyond them (their refinements are compared
+  ///        with the planner's plans as they are); supportOptimizerSettings turns it on.
+  bool motion_limits = false;
+  /// \brief A tube around the plan (> 0: on): every knot's positions (x, y, strokes)
+  ///        within tube_position [m] and angles (phi, theta) within tube_angle [rad] of the
+  ///        plan's at the same share of its run. A refinement then keeps the planner's path
+  ///        and what it checked along it (holding, breakaway), and changes the timing and
+  ///        the forces.
+  double tube_position = 0.0;
+  double tube_angle = 0.0;
+  /// \brief Forces where three or more contacts stick are the plant's least-norm ones
+  ///        (internal_force_constraint.h): no squeeze that no actuator steers.
+  bool least_norm = true;
   /// \brief Sliding contacts keep the sign of the plan's slide over each run (xi may not
   ///        move back), so the replay does not stick or reverse where the plan slides.
   bool keep_slide_direction = true;
@@ -40,6 +62,10 @@ struct OptimizerSettings {
   ///        passed a joint-tracking replay against 4
   ///        (docs/notes/2026-11-22-refinement-under-joint-tracking.md), hence off by default.
   bool split_runs_by_contact_modes = false;
+  /// \brief true: runs are cut where the plan's stated contact roles change and keep them
+  ///        (schedule.h RunCut::kStatedRoles; support plans, whose roles are what the planner
+  ///        checked); the plan must state every segment's roles. Overrides the split above.
+  bool stated_roles = false;
   /// \brief true: the exact Hessian of the Lagrangian (nested AutoDiff and closed form);
   ///        false: Ipopt's limited-memory (L-BFGS) approximation.
   bool exact_hessian = true;

@@ -7,6 +7,7 @@
 #include <array>
 #include <vector>
 
+#include "rbsf/dynamics/contact_roles.h"
 #include "rbsf/dynamics/model.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/plan/plan.h"
@@ -29,6 +30,12 @@ struct PhaseRun {
   std::array<int, kMaxFingers> slide_direction{};
   /// \brief Planned mean |d xi / dt| over the run, per sliding contact [1/s].
   std::array<double, kMaxFingers> slide_rate{};
+  /// \brief The plan relies on the contact (stated S, + or -; without stated roles every
+  ///        contact that is not off): its normal force keeps the optimiser's floor.
+  std::array<bool, kMaxFingers> relied{};
+  /// \brief The roles the plan states over the run (contact_roles.h); kUnplanned when the
+  ///        plan does not state them.
+  rbsf::ContactRoles planned{};
 };
 
 /// \brief The plan re-simulated step by step, as buildSchedule saw it (the initial guess
@@ -58,9 +65,19 @@ struct Schedule {
   ContactRole forceRole(int knot, int i) const { return role(std::min(knot, intervals() - 1), i); }
 };
 
+/// \brief Where buildSchedule cuts the plan into runs.
+enum class RunCut {
+  kPhaseLetters,  ///< where the segments' phase letter changes
+  kContactModes,  ///< also where a contact's simulated majority mode changes
+  kStatedRoles,   ///< where the roles the plan states change (contact_roles.h)
+};
+
 /// \brief Re-simulate the plan's segments (with the plan's simulator settings) and group them into
-/// runs: consecutive segments of one phase
-///        letter and, with `split_by_contact_modes`, the same majority mode of every
+/// runs. RunCut::kStatedRoles (a plan whose segments all state their contacts' roles, as
+/// support plans do) cuts where the roles change and keeps them: S sticks, + and - slide
+/// (the way the re-simulation slid), F touches without friction or direction, L is off; the
+/// letter follows the sticking count. Otherwise runs are consecutive segments of one phase
+///        letter and, with kContactModes, the same majority mode of every
 ///        contact over the segment (a P run in which a third finger lands becomes two P
 ///        runs); when that gives more than intervals / 2 runs, by letter alone. Count each
 ///        contact's mode per run and pick its role by majority, then make it agree with the
@@ -68,7 +85,7 @@ struct Schedule {
 ///        that sticks most, U none sticking (a sticking majority becomes sliding). Spread
 ///        `intervals` over the runs in proportion to their durations, at least 2 each.
 /// \return false (with `why`) when intervals < 2 runs or the plan has no segments.
-bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals,
-                   bool split_by_contact_modes, Schedule& schedule, std::string& why);
+bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals, RunCut cut,
+                   Schedule& schedule, std::string& why);
 
 }  // namespace rbsf::trajopt
