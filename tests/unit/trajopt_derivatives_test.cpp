@@ -94,7 +94,9 @@ TEST(TrajoptDerivatives, ConstraintJacobiansMatchCentralDifferences) {
       EXPECT_LT(worst, 1e-6) << set->name() << " row " << r << " col " << c << ": " << J(r, c)
                              << " vs " << fd(r, c);
     }
-    if (k.settings.stated_roles) EXPECT_TRUE(internal) << "no least-norm row was checked";
+    if (k.settings.stated_roles) {
+      EXPECT_TRUE(internal) << "no least-norm row was checked";
+    }
   }
 }
 
