@@ -263,7 +263,8 @@ TEST(Progress, WithoutATerminalEachStageIsALine) {
                        "--required-rate 0.2");
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.err.find("plan-reorientation: searching supports\n"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("plan-reorientation: certifying the support plan\n"), std::string::npos)
+  EXPECT_NE(r.err.find("plan-reorientation: optimising and certifying the support plan\n"),
+            std::string::npos)
       << r.err;
   EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
   const Result quiet = run(kPlan + " --cell " + kCells +

@@ -259,7 +259,8 @@ TEST(TrajoptRefinement, AFailedSolveIsRetriedOnceWithAMinimumSlipRate) {
   EXPECT_FALSE(twice.refined);
   EXPECT_EQ(twice.attempts, 2);
   EXPECT_NE(twice.reason.find("Maximum_Iterations_Exceeded"), std::string::npos) << twice.reason;
-  EXPECT_NE(twice.reason.find("retry with min_slip_rate: optimisation failed"), std::string::npos)
+  EXPECT_NE(twice.reason.find("retry with min_slip_rate 0.100000: optimisation failed"),
+            std::string::npos)
       << twice.reason;
   EXPECT_EQ(twice.plan.optimization.message, twice.reason);
   EXPECT_FALSE(twice.plan.optimization.chosen);

@@ -114,9 +114,12 @@ RefineOutcome refinePlan(const PlanOptimizer& given, const plan::Plan& plan,
     }
   };
   if (!cancelled(optimizer)) attempt(optimizer);
-  const double retry = settings.retry_min_slip_rate;
-  if (!attempts.empty() && !certificates.back().certified && !cancelled(optimizer) && retry > 0.0 &&
-      retry != optimizer.settings().min_slip_rate) {
+  // The retry changes the slip floor: to retry_min_slip_rate, or from it to none (a floor on
+  // every interval of a slide can leave no path inside a support plan's tube).
+  const double first = optimizer.settings().min_slip_rate;
+  const double retry = first == settings.retry_min_slip_rate ? 0.0 : settings.retry_min_slip_rate;
+  if (!attempts.empty() && !certificates.back().certified && !cancelled(optimizer) &&
+      settings.retry_min_slip_rate > 0.0 && retry != first) {
     OptimizerSettings again = optimizer.settings();
     again.min_slip_rate = retry;
     attempt(PlanOptimizer(model, again));
@@ -134,8 +137,8 @@ RefineOutcome refinePlan(const PlanOptimizer& given, const plan::Plan& plan,
   std::ostringstream why;
   for (int k = 0; k < out.attempts; ++k) {
     if (k == best) continue;
-    why << (why.tellp() > 0 ? "; " : "") << (k == 0 ? "first solve" : "retry with min_slip_rate")
-        << ": ";
+    why << (why.tellp() > 0 ? "; " : "")
+        << (k == 0 ? "first solve" : "retry with min_slip_rate " + std::to_string(retry)) << ": ";
     if (!attempts[k].usable)
       why << attempts[k].reason;
     else if (!certificates[k].ran)

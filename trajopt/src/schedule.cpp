@@ -18,17 +18,18 @@ double wrappedDelta(double a, double b) { return std::remainder(b - a, 2.0 * M_P
 
 // The run's roles as the plan states them: S sticks; + and - slide the way the
 // re-simulation slid (its sign agrees with the role's on the plans the support planner
-// writes; the simulated foot points are what the collocation's xi continue); F touches
-// without friction and without direction (the plan does not rely on it); L is off. The
-// letter: C for two or more sticking, P for one, U for none.
+// writes; the simulated foot points are what the collocation's xi continue); F sticks
+// within the whole cone but is not relied on (no margin, no floor: the plant holds such a
+// light touch by friction, and the part on two frictionless tips would not balance); L is
+// off. The letter: C for two or more sticking, P for one, U for none.
 void statedRoles(int m, const VecC& xi_start, const VecC& xi_end, PhaseRun& run) {
   int sticking = 0;
   for (int i = 0; i < m; ++i) {
     const rbsf::ContactRole r = run.planned[i];
     const double d = wrappedDelta(xi_start[i], xi_end[i]);
-    run.role[i] = r == rbsf::ContactRole::kLifted  ? ContactRole::kOff
-                  : r == rbsf::ContactRole::kStick ? ContactRole::kStick
-                                                   : ContactRole::kSlide;
+    run.role[i] = r == rbsf::ContactRole::kLifted ? ContactRole::kOff
+                  : slipSign(r) != 0              ? ContactRole::kSlide
+                                                  : ContactRole::kStick;
     run.relied[i] = r == rbsf::ContactRole::kStick || slipSign(r) != 0;
     const int sign = slipSign(r) == 0 ? 0 : (d > 1e-6 ? 1 : (d < -1e-6 ? -1 : 0));
     run.slide_direction[i] = sign;

@@ -7,7 +7,8 @@
 /// The order: the planner's plan is certified; the optimiser refines it and, on success,
 /// the refinement is certified; when that refinement is not certified, the optimiser runs
 /// once more with OptimizerSettings::min_slip_rate = retry_min_slip_rate (sliding contacts
-/// kept clearly sliding) and that refinement is certified too. Of the refinements the
+/// kept clearly sliding; when the first solve had that floor already, as a support plan's
+/// does, with none) and that refinement is certified too. Of the refinements the
 /// better certificate wins (plan::betterCertificate: certified, then the higher lower
 /// confidence bound of the success rate, then the smaller final error of its worst trial;
 /// the first on a tie). It is written instead of the planner's plan when its certificate is
@@ -61,7 +62,8 @@ struct SupportRefinement {
 /// \brief How refinePlan tries and judges.
 struct RefineSettings {
   /// \brief Retry with this minimum slip rate [1/s] when the first refinement is not
-  ///        certified (0 or the optimiser's own value: no retry).
+  ///        certified; when the first solve had this rate, the retry has none (0: no
+  ///        retry).
   double retry_min_slip_rate = 0.1;
   plan::CertificateSettings certificate;  ///< how each candidate is certified
   SupportRefinement support;              ///< for support plans

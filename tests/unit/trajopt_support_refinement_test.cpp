@@ -1,0 +1,146 @@
+// Refining a support plan (plan_refinement.h supportOptimizerSettings): on its stated roles,
+// within the margins it was planned with and near its path, the refinement keeps every
+// sticking force inside the friction-use cone and runs at least as well as the planner's
+// plan on the same draws; the same refinement without those margins drops the part.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rbsf/plan/certificate.h"
+#include "rbsf/planner/support_planner.h"
+#include "rbsf/trajopt/plan_refinement.h"
+#include "trajopt_support.h"
+
+namespace rbsf::trajopt {
+namespace {
+
+struct Planned {
+  plan::Plan plan;
+  plan::PlanMargins margins;
+};
+
+// The support planner's -15 degree turn of the default part, on a budget.
+const Planned& supportTurn() {
+  static const Planned out = [] {
+    planner::SupportPlannerSettings s;
+    s.max_expansions = 20000;
+    s.time_limit = 3600.0;
+    planner::SupportPlanner planner(test::defaultModel(), s);
+    planner::Problem p;
+    p.start = {0.1, 0.40, 0.0};
+    p.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
+    Planned r;
+    if (!planner.solve(p, r.plan)) throw std::runtime_error("no support path for -15 degrees");
+    r.margins.support = true;
+    r.margins.friction_use = planner.frictionUse();
+    r.margins.normal_margin = s.search.support.balance.normal_margin;
+    return r;
+  }();
+  return out;
+}
+
+// Bounded by Ipopt's iterations, not the clock (the same result under the sanitizers).
+OptimizerSettings base() {
+  OptimizerSettings s;
+  s.max_solve_time = 3600.0;
+  return s;
+}
+
+plan::CertificateSettings fewTrials() {
+  plan::CertificateSettings c;
+  c.trials = 12;  // the same seed: the same draws for every plan certified
+  return c;
+}
+
+TEST(SupportRefinement, StickingForcesStayInTheFrictionUseConeAndItRunsAtLeastAsWell) {
+  const RbsfModel& model = test::defaultModel();
+  const Planned& in = supportTurn();
+  const OptimizerSettings s = supportOptimizerSettings(base(), in.margins);
+  const OptimizedPlan out = PlanOptimizer(model, s).optimize(in.plan);
+  ASSERT_TRUE(out.success) << out.plan.optimization.message;
+  // Every knot's forces against the roles of the interval it starts (the plan's segments
+  // are the knot intervals and carry the stated roles).
+  const double cone = in.margins.friction_use * model.cell().friction.mu_static;
+  const double floor = in.margins.normal_margin * model.cell().object.mass * model.cell().gravity;
+  int sticking = 0;
+  for (std::size_t k = 0; k < out.plan.samples.size(); ++k) {
+    const plan::PlanSegment& seg = out.plan.segments[std::min(k, out.plan.segments.size() - 1)];
+    ASSERT_TRUE(planned(seg.contacts));
+    for (int i = 0; i < model.numFingers(); ++i) {
+      const ContactRole r = seg.contacts[i];
+      const double fn = out.plan.samples[k].f_n[i], ft = out.f_t[k][i];
+      if (r == ContactRole::kStick) {
+        ++sticking;
+        EXPECT_LE(std::abs(ft), cone * fn * (1.0 + 1e-6) + 1e-6) << "knot " << k << " finger " << i;
+      }
+      if (r == ContactRole::kStick || slipSign(r) != 0) {
+        EXPECT_GE(fn, floor * (1.0 - 1e-6)) << "knot " << k << " finger " << i;
+      }
+    }
+  }
+  EXPECT_GT(sticking, 50);
+  // The effort falls, and on the same draws the refinement runs at least as well.
+  EXPECT_LT(out.plan.optimization.cost_after, 0.8 * out.plan.optimization.cost_before);
+  const plan::Certificate planned = plan::certify(model, in.plan, fewTrials());
+  const plan::Certificate refined = plan::certify(model, out.plan, fewTrials());
+  EXPECT_GE(refined.lower_bound, planned.lower_bound)
+      << refined.successes << "/" << refined.trials << " against " << planned.successes << "/"
+      << planned.trials;
+  EXPECT_EQ(refined.successes, refined.trials);
+  EXPECT_TRUE(refined.motion.ok());
+}
+
+TEST(SupportRefinement, WithoutTheMarginsTheSameRefinementDropsThePart) {
+  const RbsfModel& model = test::defaultModel();
+  const Planned& in = supportTurn();
+  // The same roles and optimiser, with none of the margins: the whole cone, no normal
+  // floor, no tube around the path, no motion limits.
+  OptimizerSettings s = supportOptimizerSettings(base(), in.margins);
+  s.cone_margin = 1.0;
+  s.normal_floor = 0.0;
+  s.tube_position = s.tube_angle = 0.0;
+  s.motion_limits = false;
+  const OptimizedPlan out = PlanOptimizer(model, s).optimize(in.plan);
+  ASSERT_TRUE(out.success) << out.plan.optimization.message;
+  std::vector<plan::TrialOutcome> trials;
+  const plan::Certificate refined = plan::certify(model, out.plan, fewTrials(), &trials);
+  int dropped = 0;
+  for (const plan::TrialOutcome& t : trials) dropped += t.dropped;
+  EXPECT_GE(dropped, refined.trials / 2);
+  EXPECT_LT(refined.lower_bound, plan::certify(model, in.plan, fewTrials()).lower_bound);
+}
+
+TEST(SupportRefinement,
+     ThePipelinesStepWritesTheRefinementOnlyWhenItsCertificateIsAtLeastThePlanners) {
+  const RbsfModel& model = test::defaultModel();
+  const Planned& in = supportTurn();
+  RefineSettings rs;
+  rs.certificate = fewTrials();
+  const PlanOptimizer optimizer(model, base());
+  const RefineOutcome out = refinePlan(optimizer, in.plan, rs, in.margins);
+  ASSERT_TRUE(out.plan.certificate.ran);
+  EXPECT_EQ(out.refined, atLeastAsGood(out.plan.certificate, out.planner_certificate));
+  ASSERT_TRUE(out.refined) << out.reason;
+  EXPECT_TRUE(out.plan.optimization.chosen);
+  EXPECT_GE(out.plan.certificate.lower_bound, out.planner_certificate.lower_bound);
+  for (const plan::PlanSegment& seg : out.plan.segments) EXPECT_TRUE(planned(seg.contacts));
+}
+
+TEST(SupportRefinement, AtLeastAsGoodComparesTheVerdictThenTheBound) {
+  plan::Certificate a, b;
+  a.ran = b.ran = true;
+  a.lower_bound = b.lower_bound = 0.9;
+  EXPECT_TRUE(atLeastAsGood(a, b));  // a tie: at least as good
+  b.certified = true;
+  EXPECT_FALSE(atLeastAsGood(a, b));  // the planner's certified, the refinement not
+  a.certified = true;
+  a.lower_bound = 0.9 - 1e-12;
+  EXPECT_FALSE(atLeastAsGood(a, b));  // a lower bound below
+  a.lower_bound = 0.95;
+  EXPECT_TRUE(atLeastAsGood(a, b));
+  a.ran = false;
+  EXPECT_FALSE(atLeastAsGood(a, b));
+}
+
+}  // namespace
+}  // namespace rbsf::trajopt
