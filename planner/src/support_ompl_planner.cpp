@@ -58,6 +58,7 @@ void SupportOmplPlanner::clear() {
   plan_ = plan::Plan{};
   expansions_ = 0;
   reach_ = SupportReach{};
+  margins_ = plan::PlanMargins{};
 }
 
 ob::PlannerStatus SupportOmplPlanner::solve(const ob::PlannerTerminationCondition& ptc) {
@@ -98,6 +99,9 @@ ob::PlannerStatus SupportOmplPlanner::solve(const ob::PlannerTerminationConditio
   watcher.join();
   expansions_ = support.expansions();
   reach_ = support.reach();
+  margins_.support = true;
+  margins_.friction_use = support.frictionUse();
+  margins_.normal_margin = settings_.search.support.balance.normal_margin;
   if (!found) {
     OMPL_INFORM("%s: %s", getName().c_str(), support.message().c_str());
     const bool budget = s.max_expansions > 0 && expansions_ >= s.max_expansions;

@@ -151,7 +151,9 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
     // The product's refinement after the run (OMPL's time is the planner's alone): optimise,
     // certify the planner's plan and the refinement, keep the better (plan_refinement.h).
     const trajopt::PlanOptimizer optimizer(model);
-    const trajopt::RefineOutcome out = trajopt::refinePlan(optimizer, plan);
+    const trajopt::RefineOutcome out =
+        trajopt::refinePlan(optimizer, plan, trajopt::RefineSettings{},
+                            support ? support_planner->margins() : plan::PlanMargins{});
     const plan::OptimizationSummary& o = out.plan.optimization;
     run["optimizer success BOOLEAN"] = out.converged ? "1" : "0";
     run["optimizer status ENUM"] = optimizerStatusIndex(o.status);

@@ -18,7 +18,6 @@ DecisionVariables::DecisionVariables(const RbsfModel& model, const DecisionLayou
       plan_(plan),
       min_scale_(settings.duration_min_scale),
       max_scale_(settings.duration_max_scale),
-      slide_min_scale_(settings.slide_duration_min_scale),
       normal_floor_(settings.normal_floor * model.cell().object.mass *
                     std::max(model.cell().gravity, 1.0)),
       motion_limits_(settings.motion_limits),
@@ -83,11 +82,7 @@ void DecisionVariables::bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) c
   for (int a = 0; a < layout::kObjectDim; ++a)
     lower[layout_.q(K - 1) + a] = upper[layout_.q(K - 1) + a] = goal[a];
   for (int j = 0; j < layout_.runs(); ++j) {
-    const PhaseRun& run = schedule_.runs[j];
-    const bool slides = std::any_of(run.slide_direction.begin(), run.slide_direction.end(),
-                                    [](int d) { return d != 0; });
-    lower[layout_.duration(j)] =
-        (slides ? std::max(min_scale_, slide_min_scale_) : min_scale_) * run.duration;
+    lower[layout_.duration(j)] = min_scale_ * schedule_.runs[j].duration;
     upper[layout_.duration(j)] = max_scale_ * schedule_.runs[j].duration;
   }
 }

@@ -29,6 +29,7 @@
 #include <ompl/base/Planner.h>
 #include <ompl/control/SpaceInformation.h>
 
+#include "rbsf/plan/refine_step.h"
 #include "rbsf/planner/support_planner.h"
 
 namespace rbsf::planner {
@@ -55,6 +56,8 @@ class SupportOmplPlanner : public ompl::base::Planner {
   long expansions() const { return expansions_; }
   /// \brief What the last solve()'s searches reached (support_reach.h).
   const SupportReach& reach() const { return reach_; }
+  /// \brief The margins the last plan was planned with (its refinement keeps them).
+  const plan::PlanMargins& margins() const { return margins_; }
   SupportPlannerSettings& settings() { return settings_; }
 
  private:
@@ -64,6 +67,7 @@ class SupportOmplPlanner : public ompl::base::Planner {
   plan::Plan plan_;
   long expansions_ = 0;
   SupportReach reach_;
+  plan::PlanMargins margins_;
 };
 
 }  // namespace rbsf::planner

@@ -58,7 +58,7 @@ class DecisionVariables {
   DecisionLayout layout_;
   const Schedule& schedule_;
   const plan::Plan& plan_;
-  double min_scale_, max_scale_, slide_min_scale_;
+  double min_scale_, max_scale_;
   /// \brief The guess before it is clipped into the bounds (the tube's centre).
   Eigen::VectorXd plannedGuess() const;
 

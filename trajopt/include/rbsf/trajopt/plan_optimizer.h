@@ -23,10 +23,6 @@ struct OptimizerSettings {
   double force_weight = 1e-3;
   double duration_min_scale = 0.5;  ///< each phase's duration within [min, max] x planned
   double duration_max_scale = 2.0;
-  /// \brief Runs in which a contact slides one way last at least this x planned (the larger
-  ///        of this and duration_min_scale): the law breaks sliders loose and keeps them
-  ///        slipping at its own pace, so a faster slide than the plan's is not followed.
-  double slide_duration_min_scale = 0.0;
   double cone_margin = 0.9;  ///< sticking forces kept within margin * mu_s
   /// \brief Every contact a run relies on (stated S, + or -; without stated roles every
   ///        contact that touches) pressed by at least this x m_o g0 [N/N]; 0: f_n >= 0.

@@ -56,7 +56,12 @@ struct SupportRefinement {
   double tube_position = 0.01;             ///< [m]
   double tube_angle = 2.0 * M_PI / 180.0;  ///< [rad]
   double duration_min_scale = 0.5;         ///< runs may take half their planned time
-  double min_slip_rate = 0.1;              ///< OptimizerSettings::min_slip_rate [1/s]
+  /// \brief OptimizerSettings::min_slip_rate of the first solve [1/s]: none (the slides
+  ///        keep their direction only). A floor on every interval of a slide left no
+  ///        refinement inside the tube for the 45 degree plan, and for the 30 degree plan
+  ///        with runs of at least 0.7 of their time; the law keeps loose sliders slipping by
+  ///        itself. RefineSettings::retry_min_slip_rate asks for it in the retry.
+  double min_slip_rate = 0.0;
 };
 
 /// \brief How refinePlan tries and judges.
@@ -72,7 +77,7 @@ struct RefineSettings {
 /// \brief The optimiser's settings for a support plan planned with `margins`: `base` with
 ///        runs on the stated roles, the sticking forces within margins.friction_use of the
 ///        cone, relied-on normal forces above margins.normal_margin of the part's weight,
-///        the slides kept one way at least at `support.min_slip_rate`, the cell's motion
+///        the slides kept one way (at least at `support.min_slip_rate`), the cell's motion
 ///        limits, the least-norm internal forces and `support`'s tube and shortest runs.
 OptimizerSettings supportOptimizerSettings(OptimizerSettings base, const plan::PlanMargins& margins,
                                            const SupportRefinement& support = {});
