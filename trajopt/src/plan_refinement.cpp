@@ -144,14 +144,13 @@ RefineOutcome refinePlan(const PlanOptimizer& given, const plan::Plan& plan,
     else if (!certificates[k].ran)
       why << "not certified (cancelled)";
     else
-      why << "its certificate (" << certificates[k].successes << "/" << certificates[k].trials
-          << ", lower bound " << certificates[k].lower_bound << ") is "
+      why << "its certificate is "
           << (best < 0
-                  ? "short of the planner's plan's (" +
-                        std::string(out.planner_certificate.certified ? "certified"
-                                                                      : "not certified") +
-                        ", lower bound " + std::to_string(out.planner_certificate.lower_bound) + ")"
-                  : std::string("not better than the chosen one's"));
+                  ? std::string("short of the planner's plan's (") +
+                        (out.planner_certificate.certified ? "certified, " : "") + "lower bound " +
+                        std::to_string(out.planner_certificate.lower_bound) + ")"
+                  : std::string("not better than the chosen one's"))
+          << ": " << plan::verdictText(certificates[k]);
   }
   const int summary = best < 0 ? 0 : best;
   if (best >= 0) {

@@ -19,9 +19,9 @@ double wrappedDelta(double a, double b) { return std::remainder(b - a, 2.0 * M_P
 // The run's roles as the plan states them: S sticks; + and - slide the way the
 // re-simulation slid (its sign agrees with the role's on the plans the support planner
 // writes; the simulated foot points are what the collocation's xi continue); F sticks
-// within the whole cone but is not relied on (no margin, no floor: the plant holds such a
-// light touch by friction, and the part on two frictionless tips would not balance); L is
-// off. The letter: C for two or more sticking, P for one, U for none.
+// but is not relied on (no normal floor: the plant holds such a light touch by friction,
+// and the part on two frictionless tips would not balance); L is off. The letter: C for two or more
+// sticking, P for one, U for none.
 void statedRoles(int m, const VecC& xi_start, const VecC& xi_end, PhaseRun& run) {
   int sticking = 0;
   for (int i = 0; i < m; ++i) {

@@ -12,8 +12,10 @@ namespace rbsf::trajopt {
 ///        f_t is free), the linearised cone |f_t| <= margin mu_s f_n as two rows <= 0 [N]:
 ///   f_t,k,i - margin mu_s f_n,k,i <= 0,    -f_t,k,i - margin mu_s f_n,k,i <= 0.
 /// With f_n >= 0 (variable bounds) this is the planar cone exactly; margin < 1 keeps the
-/// forces off its edges so the replay does not start to slip. A contact its run does not
-/// rely on (PhaseRun::relied false: a free touch) keeps the whole cone, margin 1.
+/// forces off its edges so the replay does not start to slip. A free touch (stated F) keeps
+/// the margin too: with the whole cone the 45 degree support plan's refinement put its two
+/// free tips on the cone's edge, they slid in the replay and the joints no longer held the
+/// part for 0.67 s (docs/notes/2026-11-27-refining-support-plans.md).
 class FrictionConeConstraint final : public ConstraintSet {
  public:
   FrictionConeConstraint(const DecisionLayout& layout, const Schedule& schedule, double mu_s,
@@ -27,11 +29,8 @@ class FrictionConeConstraint final : public ConstraintSet {
   void jacobian(const ConstVectorRef& z, double* values) const override;
 
  private:
-  struct Knot {
-    int fn, ft;  ///< columns of f_n and f_t
-    double mu;   ///< margin x mu_s, or mu_s for a contact not relied on
-  };
-  std::vector<Knot> knots_;
+  std::vector<std::pair<int, int>> knots_;  ///< (column of f_n, column of f_t)
+  double mu_;                               ///< margin * mu_s
   std::vector<std::pair<int, int>> structure_;
 };
 

@@ -31,8 +31,7 @@ struct PhaseRun {
   /// \brief Planned mean |d xi / dt| over the run, per sliding contact [1/s].
   std::array<double, kMaxFingers> slide_rate{};
   /// \brief The plan relies on the contact (stated S, + or -; without stated roles every
-  ///        contact that is not off): its normal force keeps the optimiser's floor and, when
-  ///        it sticks, its force the cone's margin (a free contact only the cone).
+  ///        contact that is not off): its normal force keeps the optimiser's floor.
   std::array<bool, kMaxFingers> relied{};
   /// \brief The roles the plan states over the run (contact_roles.h); kUnplanned when the
   ///        plan does not state them.
@@ -76,8 +75,8 @@ enum class RunCut {
 /// \brief Re-simulate the plan's segments (with the plan's simulator settings) and group them into
 /// runs. RunCut::kStatedRoles (a plan whose segments all state their contacts' roles, as
 /// support plans do) cuts where the roles change and keeps them: S sticks, + and - slide
-/// (the way the re-simulation slid), F sticks within the whole cone without being relied
-/// on (PhaseRun::relied false), L is off; the
+/// (the way the re-simulation slid), F sticks without being relied on (PhaseRun::relied
+/// false: no normal floor), L is off; the
 /// letter follows the sticking count. Otherwise runs are consecutive segments of one phase
 ///        letter and, with kContactModes, the same majority mode of every
 ///        contact over the segment (a P run in which a third finger lands becomes two P
