@@ -6,9 +6,9 @@
 namespace rbsf::trajopt {
 
 namespace {
-using AD14 = Eigen::AutoDiffScalar<Eigen::Matrix<double, InternalForceConstraint::kLocal, 1>>;
-using AD14x2 = Eigen::AutoDiffScalar<Eigen::Matrix<AD14, InternalForceConstraint::kLocal, 1>>;
 constexpr int kN = InternalForceConstraint::kLocal;
+using AD14 = ADN<kN>;
+using AD14x2 = ADNx2<kN>;
 }  // namespace
 
 InternalForceConstraint::InternalForceConstraint(const RbsfModel& model,
@@ -69,14 +69,12 @@ void InternalForceConstraint::hessianStructure(HessianPattern& pattern) {
 
 void InternalForceConstraint::addHessian(const ConstVectorRef& z, const double* lambda,
                                          double* values) const {
+  double x[kN];
   AD14x2 local[kN];
   const int* slot = hess_slots_.data();
   for (int r = 0; r < rows(); ++r) {
-    for (int c = 0; c < kN; ++c) {
-      local[c].value() = AD14(z[rows_[r][c]], kN, c);
-      local[c].derivatives().setConstant(AD14(0.0));
-      local[c].derivatives()[c] = AD14(1.0);
-    }
+    for (int c = 0; c < kN; ++c) x[c] = z[rows_[r][c]];
+    seedSecondOrder<kN>(x, local);
     const AD14x2 g = internalForceResidual<AD14x2>(model_, local);
     for (int a = 0; a < kN; ++a)
       for (int b = 0; b <= a; ++b)

@@ -171,19 +171,25 @@ void knotRhs(const RbsfModel& model, const DecisionLayout& dl, const S* z, int o
 
 namespace rbsf::trajopt {
 
-/// \brief First-order AutoDiff over 6 local variables (contact elements).
-using AD6 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 6, 1>>;
-/// \brief Second-order (nested) AutoDiff over 6 local variables: for y of this type,
+/// \brief First-order AutoDiff over N local variables (stack storage).
+template <int N>
+using ADN = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
+/// \brief Second-order (nested) AutoDiff over N local variables: for y of this type,
 ///        y.value().derivatives() is the gradient and y.derivatives()[a].derivatives()[b]
 ///        the Hessian entry (a, b).
-using AD6x2 = Eigen::AutoDiffScalar<Eigen::Matrix<AD6, 6, 1>>;
+template <int N>
+using ADNx2 = Eigen::AutoDiffScalar<Eigen::Matrix<ADN<N>, N, 1>>;
+/// \brief First- and second-order AutoDiff over 6 local variables (contact elements).
+using AD6 = ADN<6>;
+using AD6x2 = ADNx2<6>;
 
-/// \brief Seed out[a] as the a-th of 6 independent variables with value x[a].
-inline void seedSecondOrder(const double* x, AD6x2* out) {
-  for (int a = 0; a < 6; ++a) {
-    out[a].value() = AD6(x[a], 6, a);
-    out[a].derivatives().setConstant(AD6(0.0));
-    out[a].derivatives()[a] = AD6(1.0);
+/// \brief Seed out[a] as the a-th of N independent variables with value x[a].
+template <int N>
+void seedSecondOrder(const double* x, ADNx2<N>* out) {
+  for (int a = 0; a < N; ++a) {
+    out[a].value() = ADN<N>(x[a], N, a);
+    out[a].derivatives().setConstant(ADN<N>(0.0));
+    out[a].derivatives()[a] = ADN<N>(1.0);
   }
 }
 
