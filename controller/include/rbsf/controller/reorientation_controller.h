@@ -160,8 +160,9 @@ class ReorientationController {
 
   /// \brief The input for the control period [t, t + h) (h: the plan's time step, 1 ms by
   ///        default) from the joints measured at t (theta, l_1..l_m: tau order), by the
-  ///        control law of the published plan (control_law.h; part feedback when the cell
-  ///        senses the part, joint PD when not). The first call of track() or
+  ///        control law of the published plan (control_law.h; with the plan's sensing,
+  ///        plan::lawSensing: part feedback when the cell senses the part and the plan is
+  ///        not held by the joints alone, joint PD otherwise). The first call of track() or
   ///        addPartPose() after a plan is published starts its law (the estimate at the
   ///        plan's start, the joints as measured). Joints of the wrong size: false.
   ///        Returns false and leaves `tau` untouched when no plan is published; `plan_id`
