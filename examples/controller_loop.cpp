@@ -3,6 +3,8 @@
 // the cell's sensors simulated (rbsf/dynamics/sensor_model.h: noisy joints every tick, the
 // part's pose at the sensor's rate, late by its latency).
 //
+//   With --plan FILE the plan file is loaded instead (checked against the cell: a plan made
+//   for another cell is bad input, exit 2) and executed from step 2.
 //   1. The part rests on the fingers at --start; while the worker thread plans and
 //      certifies, the loop holds it with the control law on a plan of no motion (the start
 //      at rest with the holding tau: a hold is a plan like any other). The loop never waits
@@ -33,6 +35,8 @@
 #include "rbsf/dynamics/sensor_model.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/dynamics/state_layout.h"
+#include "rbsf/plan/plan.h"
+#include "rbsf/plan/plan_fit.h"
 #include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
@@ -95,9 +99,13 @@ int run(int argc, char** argv) {
   std::string cell, start_text, goal_text, theta_text = "0", limit_text = "30", seed_text = "1",
                                            settle_text = "1";
   bool no_pace = false, optimize = false, accept_uncertified = false;
+  std::string plan_file;
   app.add_option("--cell", cell, "cell YAML file")->required();
-  app.add_option("--start", start_text, "start pose x,y,phi (part at rest)")->required();
-  app.add_option("--goal", goal_text, "goal pose x,y,phi")->required();
+  app.add_option("--plan", plan_file,
+                 "run this plan file (plan-reorientation --out) instead of planning; refused "
+                 "(exit 2) when it was made for another cell");
+  app.add_option("--start", start_text, "start pose x,y,phi (part at rest; not with --plan)");
+  app.add_option("--goal", goal_text, "goal pose x,y,phi (not with --plan)");
   app.add_option("--start-theta", theta_text, "base angle at the start (default 0)");
   app.add_option("--time-limit", limit_text, "planning time limit [s] (default 30)");
   app.add_option("--seed", seed_text, "planner seed (default 1)");
@@ -113,9 +121,22 @@ int run(int argc, char** argv) {
   parseCommandLine(app, argc, argv);
 
   controller::ReorientationRequest request;
-  request.problem.start = parsePose(start_text, "--start");
-  request.problem.goal = parsePose(goal_text, "--goal");
-  request.problem.start_theta = parseAngle(theta_text, "--start-theta");
+  plan::Plan given;  // --plan: the plan to run, its start the plant's
+  if (!plan_file.empty()) {
+    if (!start_text.empty() || !goal_text.empty())
+      throw InputError("--plan: the plan file gives the start and the goal, not --start/--goal");
+    given = plan::readPlanJson(plan_file);
+    request.problem.start = given.start;
+    request.problem.goal = given.goal;
+    request.problem.start_theta = given.start_theta;
+    request.planner.simulator = given.simulator;
+  } else {
+    if (start_text.empty() || goal_text.empty())
+      throw InputError("--start and --goal: required unless --plan gives a plan file");
+    request.problem.start = parsePose(start_text, "--start");
+    request.problem.goal = parsePose(goal_text, "--goal");
+    request.problem.start_theta = parseAngle(theta_text, "--start-theta");
+  }
   request.planner.time_limit = parseNumber(limit_text, "--time-limit");
   if (!(request.planner.time_limit > 0.0)) throw InputError("--time-limit: must be positive");
   request.planner.seed =
@@ -146,41 +167,55 @@ int run(int argc, char** argv) {
   VecU tau(model.controlDim()), joints(model.controlDim());
   ReferenceSample ref;
 
-  // 1. Hold while the worker plans.
   Pacer pacer(!no_pace);
-  if (!ctl.plan(request)) throw std::runtime_error("the controller is busy");
-  long tick = 0, no_plan_samples = 0;
-  double hold_error = 0.0;
-  while (ctl.status() == controller::ControllerStatus::kPlanning) {
-    pacer.tickStart();
-    no_plan_samples += !ctl.sample(0.0, ref);  // nothing published yet: "no plan"
-    sensors.joints(state.q, joints);
-    sensors.partPose(tick, state.q,
-                     [&](double stamp, const Pose& p) { holder.addPartPose(stamp, p); });
-    holder.compute(static_cast<double>(tick) * h, joints, tau);
-    plant.step(state, tau, *ws);
-    hold_error = std::max(hold_error, (state.q - q0).head<3>().cwiseAbs().maxCoeff());
-    ++tick;
-    pacer.tickEnd();
-  }
-  ctl.wait();
-  const controller::RequestResult result = ctl.result();
-  if (result.outcome == controller::PlanOutcome::kInputError) throw InputError(result.message);
-  std::printf(
-      "planning   %s after %.3f s (%ld loop ticks holding the part, which moved at most "
-      "%.2e m or rad; %ld samples said \"no plan\")\n",
-      controller::toString(result.outcome), result.plan.planning_time, tick, hold_error,
-      no_plan_samples);
-  if (!result.message.empty()) std::printf("           %s\n", result.message.c_str());
-  if (ctl.status() != controller::ControllerStatus::kReady) {
-    if (result.outcome == controller::PlanOutcome::kNotCertified) {
-      std::fprintf(stderr, "rbsf-controller-loop: the plan was not run: %s\n",
-                   result.message.c_str());
+  if (!plan_file.empty()) {
+    // 1'. A plan file: checked against the cell and published; no planning.
+    std::string why;
+    if (!ctl.load(given, &why, accept_uncertified)) {
+      // A plan for this cell that failed its certificate is not run (4), as a planned one;
+      // anything else is bad input (2).
+      if (!plan::planCellMismatch(model, given).empty() || given.certificate.certified)
+        throw InputError("--plan " + plan_file + ": " + why);
+      std::fprintf(stderr, "rbsf-controller-loop: the plan was not run: %s\n", why.c_str());
       return 4;
     }
-    std::fprintf(stderr, "rbsf-controller-loop: planning failed (%s): %s\n",
-                 controller::toString(result.outcome), result.message.c_str());
-    return 3;
+    std::printf("loaded     %s\n           %s\n", plan_file.c_str(), ctl.result().message.c_str());
+  } else {
+    // 1. Hold while the worker plans.
+    if (!ctl.plan(request)) throw std::runtime_error("the controller is busy");
+    long tick = 0, no_plan_samples = 0;
+    double hold_error = 0.0;
+    while (ctl.status() == controller::ControllerStatus::kPlanning) {
+      pacer.tickStart();
+      no_plan_samples += !ctl.sample(0.0, ref);  // nothing published yet: "no plan"
+      sensors.joints(state.q, joints);
+      sensors.partPose(tick, state.q,
+                       [&](double stamp, const Pose& p) { holder.addPartPose(stamp, p); });
+      holder.compute(static_cast<double>(tick) * h, joints, tau);
+      plant.step(state, tau, *ws);
+      hold_error = std::max(hold_error, (state.q - q0).head<3>().cwiseAbs().maxCoeff());
+      ++tick;
+      pacer.tickEnd();
+    }
+    ctl.wait();
+    const controller::RequestResult planned = ctl.result();
+    if (planned.outcome == controller::PlanOutcome::kInputError) throw InputError(planned.message);
+    std::printf(
+        "planning   %s after %.3f s (%ld loop ticks holding the part, which moved at most "
+        "%.2e m or rad; %ld samples said \"no plan\")\n",
+        controller::toString(planned.outcome), planned.plan.planning_time, tick, hold_error,
+        no_plan_samples);
+    if (!planned.message.empty()) std::printf("           %s\n", planned.message.c_str());
+    if (ctl.status() != controller::ControllerStatus::kReady) {
+      if (planned.outcome == controller::PlanOutcome::kNotCertified) {
+        std::fprintf(stderr, "rbsf-controller-loop: the plan was not run: %s\n",
+                     planned.message.c_str());
+        return 4;
+      }
+      std::fprintf(stderr, "rbsf-controller-loop: planning failed (%s): %s\n",
+                   controller::toString(planned.outcome), planned.message.c_str());
+      return 3;
+    }
   }
 
   // 2. Execute the plan from where the hold left the plant, then hold its end.
@@ -208,6 +243,7 @@ int run(int argc, char** argv) {
   const double pos_err = std::hypot(state.q[layout::kX] - goal.x, state.q[layout::kY] - goal.y);
   const double ang_err =
       std::remainder(state.q[layout::kPhi] - goal.phi, 2.0 * M_PI) * 180.0 / M_PI;
+  const controller::RequestResult result = ctl.result();
   std::printf("plan       %.3f s, %zu segments, phases %s (%s)\n", duration,
               result.plan.segments.size(), result.plan.phaseSequence().c_str(),
               controller::toString(result.outcome));

@@ -9,6 +9,7 @@
 
 #include "rbsf/dynamics/control_law.h"
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/plan/plan_fit.h"
 #include "rbsf/plan/plan_reference.h"
 #ifdef RBSF_CONTROLLER_WITH_TRAJOPT
 #include "rbsf/trajopt/plan_refinement.h"
@@ -39,6 +40,8 @@ const char* toString(PlanOutcome outcome) {
       return "exact";
     case PlanOutcome::kOptimized:
       return "optimized";
+    case PlanOutcome::kLoaded:
+      return "loaded";
     case PlanOutcome::kNotCertified:
       return "not certified";
     case PlanOutcome::kApproximate:
@@ -186,6 +189,56 @@ void ReorientationController::Impl::run(ReorientationRequest request) {
   } catch (const std::exception& e) {
     finish(PlanOutcome::kError, e.what(), {}, best, false);
   }
+}
+
+bool ReorientationController::load(const plan::Plan& plan, std::string* why,
+                                   bool accept_uncertified) {
+  auto refuse = [&](std::string text) {
+    if (why != nullptr) *why = std::move(text);
+    return false;
+  };
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
+  if (impl_->status.load() == ControllerStatus::kPlanning)
+    return refuse("a request is planning: cancel() it and wait() first");
+  if (impl_->worker.joinable()) impl_->worker.join();  // finished: returns at once
+  const std::string mismatch = plan::planCellMismatch(impl_->model, plan);
+  if (!mismatch.empty()) return refuse(mismatch);
+  if (!accept_uncertified && !plan.certificate.certified)
+    return refuse(plan.certificate.ran
+                      ? "the plan is not certified (" + plan::verdictText(plan.certificate) + ")"
+                      : "the plan carries no certificate");
+  std::unique_ptr<const PublishedPlan> published;
+  try {
+    published =
+        std::make_unique<const PublishedPlan>(impl_->next_id, impl_->model, plan, impl_->feedback);
+  } catch (const InputError& e) {
+    return refuse(e.what());
+  }
+  const std::uint64_t id = impl_->next_id++;
+  impl_->slots.publish(std::move(published));
+  impl_->result.outcome = PlanOutcome::kLoaded;
+  impl_->result.message = plan.certificate.ran
+                              ? "loaded; its certificate: " + plan::verdictText(plan.certificate)
+                              : "loaded; the plan carries no certificate";
+  impl_->result.plan = plan;
+  impl_->result.best_distance = 0.0;
+  impl_->result.plan_id = id;
+  impl_->outcome.store(PlanOutcome::kLoaded);
+  impl_->status.store(ControllerStatus::kReady);
+  if (why != nullptr) why->clear();
+  return true;
+}
+
+bool ReorientationController::loadFile(const std::string& path, std::string* why,
+                                       bool accept_uncertified) {
+  plan::Plan plan;
+  try {
+    plan = plan::readPlanJson(path);
+  } catch (const InputError& e) {
+    if (why != nullptr) *why = e.what();
+    return false;
+  }
+  return load(plan, why, accept_uncertified);
 }
 
 ReorientationController::ReorientationController(const std::string& cell_file,

@@ -197,6 +197,11 @@ std::string planJsonText(const Plan& plan, const PlanFileOptions& options) {
   j["start_theta"] = plan.start_theta;
   j["goal"] = poseJson(plan.goal);
   j["q0"] = vec(plan.q0);
+  if (plan.cell.recorded)
+    j["cell"] = {{"finger_r", plan.cell.finger_r},
+                 {"part_mass", plan.cell.part_mass},
+                 {"part_inertia", plan.cell.part_inertia},
+                 {"gravity", plan.cell.gravity}};
   j["phase_sequence"] = plan.phaseSequence();
   j["segments"] = segs;
   j["samples"] = samples;
@@ -228,6 +233,16 @@ void writePlanCsv(const Plan& plan, const std::string& path) {
 std::string planCsvText(const Plan& plan) {
   if (plan.q0.size() == 0) throw std::runtime_error("empty plan");
   return trajectoryCsvText(plan.samples, static_cast<int>(plan.q0.size()) - 4);
+}
+
+PlanCell planCell(const Cell& cell) {
+  PlanCell c;
+  c.recorded = true;
+  for (const FingerParams& f : cell.fingers) c.finger_r.push_back(f.r);
+  c.part_mass = cell.object.mass;
+  c.part_inertia = cell.object.inertia;
+  c.gravity = cell.gravity;
+  return c;
 }
 
 Plan readPlanJson(const std::string& path) {
@@ -329,6 +344,21 @@ Plan parsePlanJson(std::string_view text, const std::string& path) {
     plan.q0 = readVec<VecQ>(need(j, "q0", ""), path + ": q0");
     const int n = static_cast<int>(plan.q0.size());
     if (n < 5 || n > kMaxConfig) throw InputError(path + ": q0 has a wrong length");
+    if (j.contains("cell")) {
+      const json& c = j.at("cell");
+      PlanCell& pc = plan.cell;
+      pc.recorded = true;
+      const json& r = need(c, "finger_r", "cell");
+      if (!r.is_array() || static_cast<int>(r.size()) != n - 4)
+        throw InputError(path + ": cell.finger_r needs one offset per finger");
+      for (const json& x : r) {
+        if (!x.is_number()) throw InputError(path + ": cell.finger_r must hold numbers");
+        pc.finger_r.push_back(x.get<double>());
+      }
+      pc.part_mass = num(c, "part_mass", "cell");
+      pc.part_inertia = num(c, "part_inertia", "cell");
+      pc.gravity = num(c, "gravity", "cell");
+    }
     for (const json& s : need(j, "segments", "")) {
       PlanSegment seg;
       seg.phase = parsePhase(need(s, "phase", "segments[]").get<std::string>());

@@ -196,7 +196,10 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
   }
 
   out.wall_time = since(t0);
-  if (out.chosen >= 0) out.plan = std::move(best);
+  if (out.chosen >= 0) {
+    out.plan = std::move(best);
+    out.plan.cell = plan::planCell(model_.cell());  // a controller checks it (plan_fit.h)
+  }
   if (cancelled())
     out.status = PipelineStatus::kCancelled;
   else if (out.chosen < 0)

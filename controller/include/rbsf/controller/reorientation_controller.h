@@ -21,6 +21,9 @@
 /// the fingers placed at start_theta) and ends at its duration (publishedPlan()); after it
 /// the law holds the final pose at rest. Sampling clamps t to the plan.
 ///
+/// A plan made elsewhere (a plan file of plan-reorientation) is published by load() or
+/// loadFile(): status() kReady, outcome() kLoaded, once it is checked against this cell.
+///
 /// Life of a request: status() goes kIdle -> kPlanning -> kReady (a plan was published:
 /// outcome() kExact or kOptimized, a certified plan; kApproximate or kNotCertified only
 /// when the request accepts them) or kFailed (outcome() says why: kNotCertified,
@@ -60,6 +63,7 @@ enum class PlanOutcome : std::uint8_t {
   kNone,          ///< no request finished yet
   kExact,         ///< planner reached the goal; its certified plan is published
   kOptimized,     ///< and the optimiser refined it; the certified refined plan is published
+  kLoaded,        ///< a plan given to load() / loadFile() is published as given
   kNotCertified,  ///< the plan failed its certificate (published only when accepted)
   kApproximate,   ///< the search ended away from the goal (published only when accepted)
   kNoPath,        ///< the planner produced no path
@@ -136,6 +140,20 @@ class ReorientationController {
   /// \brief Start planning `request` on a worker thread and return at once. Returns false
   ///        (and starts nothing) while a request is still planning: cancel() it and wait().
   bool plan(const ReorientationRequest& request);
+  /// \brief Publish a plan made elsewhere (by plan-reorientation, or an earlier request)
+  ///        for track() and sample(), with its own law (plan::lawSensing) and a fresh
+  ///        schedule; status() kReady, outcome() kLoaded, result() the plan and a message
+  ///        with the certificate it carries (the controller does not certify it again).
+  ///        Refused, with `why` set and nothing published, while a request is planning,
+  ///        when the plan was made for another cell (plan/plan_fit.h: fingers, recorded
+  ///        masses and offsets, the part's placement at the start), and, unless
+  ///        `accept_uncertified`, when it carries no certificate or a failed one. Not
+  ///        real-time: it builds the schedule (tens of milliseconds for a 5 s plan).
+  bool load(const plan::Plan& plan, std::string* why = nullptr, bool accept_uncertified = false);
+  /// \brief load() of a plan file (plan.h readPlanJson); a file that cannot be read or
+  ///        parsed is refused with the reader's message.
+  bool loadFile(const std::string& path, std::string* why = nullptr,
+                bool accept_uncertified = false);
   /// \brief Ask the running request to stop (the planner at its next check, the optimiser
   ///        at its next iteration); it ends with outcome kCancelled. No effect when idle.
   void cancel() noexcept;

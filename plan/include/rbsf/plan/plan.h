@@ -71,6 +71,7 @@
 #include <string_view>
 #include <vector>
 
+#include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/contact_roles.h"
 #include "rbsf/dynamics/phase.h"
 #include "rbsf/dynamics/placement.h"
@@ -119,6 +120,20 @@ enum class PlanStatus { kExact, kApproximate };
 /// \brief "exact" or "approximate", the words of the plan file and the outputs.
 std::string_view toString(PlanStatus status);
 
+/// \brief What a plan records of the cell it was made for (plan file key `cell`), so that a
+///        cell controller refuses it on another cell (plan_fit.h). The part's shape is not
+///        recorded: the plan's start placement q0 checks it.
+struct PlanCell {
+  bool recorded = false;         ///< false: no `cell` key (plans written before it existed)
+  std::vector<double> finger_r;  ///< each finger's lateral offset r_i [m]
+  double part_mass = 0.0;        ///< m_o [kg]
+  double part_inertia = 0.0;     ///< I_o [kg m^2]
+  double gravity = 0.0;          ///< g0 [m/s^2]
+};
+
+/// \brief The record of `cell` a plan carries.
+PlanCell planCell(const Cell& cell);
+
 /// \brief The planner's result.
 struct Plan {
   PlanStatus status = PlanStatus::kApproximate;
@@ -137,6 +152,7 @@ struct Plan {
   Pose start, goal;
   double start_theta = 0.0;
   VecQ q0;
+  PlanCell cell;  ///< the cell it was made for (written when recorded)
   std::vector<PlanSegment> segments;
   std::vector<PlanSample> samples;
   OptimizationSummary optimization;  ///< written when optimization.ran

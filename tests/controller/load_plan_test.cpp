@@ -1,0 +1,172 @@
+// A cell controller runs the plan file it is given (ReorientationController::loadFile): the
+// facade's track() at 1 kHz on the project's simulator reproduces the certificate's trial
+// without draws step for step; the former recipe's law (the cell's sensing instead of the plan's)
+// does not hold the plan's part; a plan made for another cell is refused, naming what
+// differs.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "rbsf/controller/reorientation_controller.h"
+#include "rbsf/dynamics/control_law.h"
+#include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/plan/plan_fit.h"
+#include "rbsf/plan/plan_reference.h"
+#include "rbsf/plan/trial.h"
+
+namespace rbsf::controller {
+namespace {
+
+const std::string kDefaultCell = std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml";
+
+/// The -15 degree support plan of the default cell, certified by the facade (kAuto) and
+/// written to a file, once per test binary.
+const std::string& planFile() {
+  static const std::string path = [] {
+    ReorientationController c(kDefaultCell);
+    ReorientationRequest r;
+    r.problem.start = {0.1, 0.40, 0.0};
+    r.problem.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
+    r.method = planner::PipelineSettings::Method::kAuto;
+    r.planner.time_limit = 3600.0;
+    r.planner.max_propagations = 200000;
+    r.certificate.trials = 4;
+    r.certificate.required_rate = 0.4;
+    if (!c.plan(r)) throw std::runtime_error("plan() refused");
+    c.wait();
+    if (c.status() != ControllerStatus::kReady) throw std::runtime_error(c.result().message);
+    const std::string file =
+        ::testing::TempDir() + "load_plan_" + std::to_string(getpid()) + ".json";
+    plan::writePlanJson(c.result().plan, file);
+    return file;
+  }();
+  return path;
+}
+
+/// The facade's loop on the nominal plant with exact joints: `steps` periods of track(),
+/// the plant stepped 1 ms each; the final state.
+VecQ runThroughTrack(ReorientationController& c, const plan::Plan& plan, long steps) {
+  const Simulator sim(c.model(), plan.simulator);
+  SimulatorWorkspace ws(c.model().numFingers());
+  // The cell places every finger under the part at the start (as the trials do).
+  const VecQ q0 = restingConfiguration(c.model(), plan.start, plan.start_theta);
+  SimState state(q0, VecQ::Zero(q0.size()));
+  VecU joints(c.model().controlDim()), tau;
+  for (long k = 0; k < steps; ++k) {
+    for (int j = 0; j < joints.size(); ++j) joints[j] = state.q[layout::inputToConfig(j)];
+    EXPECT_TRUE(c.track(k * plan.simulator.time_step, joints, tau));
+    sim.step(state, tau, ws);
+  }
+  return state.q;
+}
+
+TEST(LoadPlan, ALoadedPlanFileRunsThroughTrackAsTheCertificatesTrialWithoutDraws) {
+  ReorientationController c(kDefaultCell);
+  std::string why;
+  ASSERT_TRUE(c.loadFile(planFile(), &why)) << why;
+  EXPECT_EQ(c.status(), ControllerStatus::kReady);
+  EXPECT_EQ(c.outcome(), PlanOutcome::kLoaded);
+  EXPECT_EQ(c.planId(), 1u);
+  EXPECT_NE(c.result().message.find("certificate"), std::string::npos) << c.result().message;
+  const plan::Plan plan = plan::readPlanJson(planFile());
+  ASSERT_TRUE(plan.joint_feedback);
+  // The certificate's trial without draws: exact sensors, the plan's law, the part placed
+  // on every finger as the trials place it (traceTrial(-1) starts from the plan's q0, whose
+  // first hold has finger 1 lifted, and the joint law's estimate then loses the part).
+  const plan::CertificateSettings cs;
+  const FeedbackSchedule schedule(c.model(), plan::makeReference(plan),
+                                  plan::lawSensing(c.model().cell().sensing, plan), plan.simulator,
+                                  cs.feedback);
+  plan::TrialDraw draw = plan::nominalDraw(c.model().cell(), plan);
+  draw.q0 = restingConfiguration(c.model(), plan.start, plan.start_theta);
+  std::vector<TrajectorySample> trace;
+  const plan::TrialOutcome nominal = plan::runTrial(schedule, plan, draw, cs.trial, false, &trace);
+  ASSERT_TRUE(nominal.success) << nominal.failure;
+  const VecQ q = runThroughTrack(c, plan, static_cast<long>(trace.size()));
+  EXPECT_LT((q - trace.back().q).cwiseAbs().maxCoeff(), 1e-9) << q.transpose() << "\n"
+                                                              << trace.back().q.transpose();
+  EXPECT_LT(std::hypot(q[layout::kX] - plan.goal.x, q[layout::kY] - plan.goal.y), 0.01);
+}
+
+TEST(LoadPlan, TheCellsSensingInsteadOfThePlansDoesNotHoldASupportPlansPart) {
+  // The former recipe built the law on the cell's sensing: on this cell, which senses the
+  // part, the part-feedback law, fed exact poses every millisecond.
+  const RbsfModel model(loadCell(kDefaultCell));
+  const plan::Plan plan = plan::readPlanJson(planFile());
+  ASSERT_TRUE(model.cell().sensing.part_pose.present);
+  const FeedbackSchedule wrong(model, plan::makeReference(plan), model.cell().sensing,
+                               plan.simulator);
+  ControlLaw law(wrong);
+  const Simulator sim(model, plan.simulator);
+  SimulatorWorkspace ws(model.numFingers());
+  const VecQ q0 = restingConfiguration(model, plan.start, plan.start_theta);
+  SimState state(q0, VecQ::Zero(q0.size()));
+  VecU joints(model.controlDim()), tau;
+  const double h = plan.simulator.time_step;
+  const long steps = std::lround(wrong.holdEnd() / h);
+  for (long k = 0; k < steps && state.q.allFinite(); ++k) {
+    for (int j = 0; j < joints.size(); ++j) joints[j] = state.q[layout::inputToConfig(j)];
+    law.addPartPose(k * h, Pose{state.q[layout::kX], state.q[layout::kY], state.q[layout::kPhi]});
+    law.compute(k * h, joints, tau);
+    sim.step(state, tau, ws);
+  }
+  const bool far = !state.q.allFinite() || std::hypot(state.q[layout::kX] - plan.goal.x,
+                                                      state.q[layout::kY] - plan.goal.y) > 0.01;
+  EXPECT_TRUE(far) << state.q.transpose();
+}
+
+TEST(LoadPlan, APlanForAnotherCellIsRefusedNamingWhatDiffers) {
+  const plan::Plan plan = plan::readPlanJson(planFile());
+  ASSERT_TRUE(plan.cell.recorded);
+  const Cell base = loadCell(kDefaultCell);
+  auto refusal = [&](Cell cell) {
+    ReorientationController c(std::move(cell));
+    std::string why;
+    EXPECT_FALSE(c.load(plan, &why));
+    EXPECT_EQ(c.status(), ControllerStatus::kIdle);
+    EXPECT_EQ(c.planId(), 0u);
+    return why;
+  };
+  Cell heavier = base;
+  heavier.object.mass *= 1.1;
+  EXPECT_NE(refusal(heavier).find("the part's mass"), std::string::npos) << refusal(heavier);
+  Cell moved = base;
+  moved.fingers[1].r += 0.01;
+  EXPECT_NE(refusal(moved).find("finger 2's offset"), std::string::npos) << refusal(moved);
+  Cell four = base;
+  four.fingers.push_back(four.fingers.back());
+  four.fingers.back().r += 0.1;
+  EXPECT_NE(refusal(four).find("3 fingers in the plan, 4 in this cell"), std::string::npos);
+  // Without the record, the tips at the start still tell another part's shape.
+  plan::Plan unrecorded = plan;
+  unrecorded.cell = plan::PlanCell{};
+  Cell other_shape = loadCell(std::string(RBSF_SOURCE_DIR) + "/cells/circle.yaml");
+  other_shape.fingers = base.fingers;
+  other_shape.object.mass = base.object.mass;
+  ReorientationController c(other_shape);
+  std::string why;
+  EXPECT_FALSE(c.load(unrecorded, &why));
+  EXPECT_NE(why.find("m from this cell's part"), std::string::npos) << why;
+  // A plan whose certificate failed: refused unless accepted.
+  plan::Plan failed = plan;
+  failed.certificate.certified = false;
+  ReorientationController strict(base);
+  EXPECT_FALSE(strict.load(failed, &why));
+  EXPECT_NE(why.find("not certified"), std::string::npos) << why;
+  EXPECT_TRUE(strict.load(failed, &why, /*accept_uncertified=*/true)) << why;
+  // A file that is no plan: the reader's message.
+  EXPECT_FALSE(c.loadFile(kDefaultCell, &why));
+  EXPECT_FALSE(why.empty());
+  // And the plan's own cell takes it.
+  ReorientationController same(base);
+  EXPECT_TRUE(same.load(plan, &why)) << why;
+}
+
+}  // namespace
+}  // namespace rbsf::controller
