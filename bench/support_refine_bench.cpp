@@ -102,10 +102,7 @@ int run(int argc, char** argv) {
           end.f_n.maxCoeff() > 0.0 ? "" : " (the part dropped)");
       continue;
     }
-    rbsf::plan::PlanMargins margins;
-    margins.support = true;
-    margins.friction_use = planner.frictionUse();
-    margins.normal_margin = ps.search.support.balance.normal_margin;
+    const rbsf::plan::PlanMargins margins = planner.margins();
     rbsf::trajopt::RefineSettings rs;
     rs.certificate.trials = trials;
     rs.support = support;

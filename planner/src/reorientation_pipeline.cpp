@@ -142,11 +142,7 @@ PipelineOutcome ReorientationPipeline::run(const Problem& problem) {
     a.paths_run = support.pathsRun();
     a.reach = support.reach();
     if (found && !cancelled()) {
-      plan::PlanMargins margins;
-      margins.support = true;
-      margins.friction_use = a.friction_use;
-      margins.normal_margin = ss.search.support.balance.normal_margin;
-      judge(a, std::move(plan), start, margins);
+      judge(a, std::move(plan), start, support.margins());
     } else {
       nothing(a, plan, cancelled() ? "cancelled" : support.message());
     }

@@ -99,9 +99,7 @@ ob::PlannerStatus SupportOmplPlanner::solve(const ob::PlannerTerminationConditio
   watcher.join();
   expansions_ = support.expansions();
   reach_ = support.reach();
-  margins_.support = true;
-  margins_.friction_use = support.frictionUse();
-  margins_.normal_margin = settings_.search.support.balance.normal_margin;
+  margins_ = support.margins();
   if (!found) {
     OMPL_INFORM("%s: %s", getName().c_str(), support.message().c_str());
     const bool budget = s.max_expansions > 0 && expansions_ >= s.max_expansions;

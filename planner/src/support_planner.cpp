@@ -139,4 +139,12 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
   return true;
 }
 
+plan::PlanMargins SupportPlanner::margins() const {
+  plan::PlanMargins m;
+  m.support = true;
+  m.friction_use = friction_use_;
+  m.normal_margin = settings_.search.support.balance.normal_margin;
+  return m;
+}
+
 }  // namespace rbsf::planner

@@ -69,8 +69,8 @@ TEST(TrajoptInternalForce, TheSqueezeOfThreeStickingTipsIsFeltByNoCoordinate) {
 }
 
 TEST(TrajoptInternalForce, TheSimulatorGivesThreeStickingTipsNoSqueeze) {
-  // The default part on three tips needs more friction than the default cell's to stick on
-  // all three (docs/notes/2026-11-27-execution-by-contact-forces.md): the cell with mu_s 2.
+  // The default part on three tips needs a friction use of about 0.9 to stick on all
+  // three, more than the default cell's tips give at rest: the cell with mu_s 2.
   Cell cell = test::defaultModel().cell();
   cell.friction.mu_static = 2.0;
   const RbsfModel model(cell);

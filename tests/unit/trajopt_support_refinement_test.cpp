@@ -31,9 +31,7 @@ const Planned& supportTurn() {
     p.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
     Planned r;
     if (!planner.solve(p, r.plan)) throw std::runtime_error("no support path for -15 degrees");
-    r.margins.support = true;
-    r.margins.friction_use = planner.frictionUse();
-    r.margins.normal_margin = s.search.support.balance.normal_margin;
+    r.margins = planner.margins();
     return r;
   }();
   return out;

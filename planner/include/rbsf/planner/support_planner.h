@@ -26,6 +26,7 @@
 
 #include "rbsf/dynamics/feedback_schedule.h"
 #include "rbsf/plan/plan.h"
+#include "rbsf/plan/refine_step.h"
 #include "rbsf/planner/pivot_turn_search.h"
 #include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/support_trajectory.h"
@@ -87,6 +88,9 @@ class SupportPlanner {
   long expansions() const { return expansions_; }
   /// \brief The friction use of the attempt that found the path (0 when none did).
   double frictionUse() const { return friction_use_; }
+  /// \brief The margins the last solve()'s plan was planned with, for its refinement: a
+  ///        support plan, frictionUse() and the balance's normal margin.
+  plan::PlanMargins margins() const;
   /// \brief Paths found and run by the last solve(), every attempt.
   int pathsRun() const { return paths_; }
   /// \brief What the last solve()'s searches reached, merged (support_reach.h): the answer

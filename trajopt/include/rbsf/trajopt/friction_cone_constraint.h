@@ -15,7 +15,7 @@ namespace rbsf::trajopt {
 /// forces off its edges so the replay does not start to slip. A free touch (stated F) keeps
 /// the margin too: with the whole cone the 45 degree support plan's refinement put its two
 /// free tips on the cone's edge, they slid in the replay and the joints no longer held the
-/// part for 0.67 s (docs/notes/2026-11-27-refining-support-plans.md).
+/// part for 0.67 s.
 class FrictionConeConstraint final : public ConstraintSet {
  public:
   FrictionConeConstraint(const DecisionLayout& layout, const Schedule& schedule, double mu_s,

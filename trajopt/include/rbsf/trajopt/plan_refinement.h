@@ -20,7 +20,7 @@
 /// margins it was planned with, the cell's motion limits and a tube around its path
 /// (supportOptimizerSettings): the refinements that minimised effort freely removed the
 /// squeeze and the margins that kept its contacts in their roles, and every one dropped the
-/// part (docs/notes/2026-11-26-ninety-degrees-and-refining-supports.md).
+/// part.
 
 #include <atomic>
 #include <cmath>
