@@ -125,12 +125,12 @@ bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals
   }
   auto groupRuns = [&](bool split, std::vector<int>& first_segment) {
     first_segment.clear();
-    for (int s = 0; s < S; ++s) {
-      const bool cut = stated
-                           ? plan.segments[s].contacts != plan.segments[std::max(s - 1, 0)].contacts
-                           : plan.segments[s].phase != plan.segments[std::max(s - 1, 0)].phase ||
-                                 (split && segmentModes(s) != segmentModes(s - 1));
-      if (s == 0 || cut) first_segment.push_back(s);
+    first_segment.push_back(0);
+    for (int s = 1; s < S; ++s) {
+      const bool cut = stated ? plan.segments[s].contacts != plan.segments[s - 1].contacts
+                              : plan.segments[s].phase != plan.segments[s - 1].phase ||
+                                    (split && segmentModes(s) != segmentModes(s - 1));
+      if (cut) first_segment.push_back(s);
     }
     first_segment.push_back(S);
   };
