@@ -201,15 +201,14 @@ bool ControlLaw::computeJointOnly(double t, const VecU& joints, VecU& tau) {
   state_.q = at_.q + e_.head(n);
   state_.v = at_.v + e_.tail(n);
   num_pending_ = 0;
-  // The part: where the strokes put it. At the start every finger touches (the cell places
-  // them under the part), which fixes its pose; later it rides on the planned contacts with
-  // that offset from the plan's pose (in the part's frame).
+  // The part: where the strokes put it. At the start the contacts the plan starts on touch
+  // (the cell places those fingers under the part), which fixes its pose; later it rides on
+  // the planned contacts with that offset from the plan's pose (in the part's frame). A
+  // finger the plan starts lifted tells nothing of the part.
   q_est_ = state_.q;
   v_est_ = state_.v;
   if (!start_set_) {
-    ContactModes all;
-    all.fill(ContactMode::kStick);
-    closeGaps(q_est_, all);
+    closeGaps(q_est_, schedule_.modes(0));
     const Vec2 d = rotate(-at_.q[layout::kPhi], Vec2(q_est_[layout::kX] - at_.q[layout::kX],
                                                      q_est_[layout::kY] - at_.q[layout::kY]));
     part_offset_ = Eigen::Vector3d(d.x(), d.y(), q_est_[layout::kPhi] - at_.q[layout::kPhi]);
@@ -382,7 +381,6 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
         j == layout::kTauTheta ? c.base.torque_limit : c.fingers[j - 1].force_limit;
     clamped = clamped || std::abs(tau[j]) >= limit * (1.0 - 1e-9) || std::abs(demand_[j]) > limit;
   }
-  demand_ = tau;
   return clamped;
 }
 

@@ -16,6 +16,7 @@
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/dynamics/state_layout.h"
+#include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_fit.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"
@@ -54,8 +55,8 @@ const std::string& planFile() {
 VecQ runThroughTrack(ReorientationController& c, const plan::Plan& plan, long steps) {
   const Simulator sim(c.model(), plan.simulator);
   SimulatorWorkspace ws(c.model().numFingers());
-  // The cell places every finger under the part at the start (as the trials do).
-  const VecQ q0 = restingConfiguration(c.model(), plan.start, plan.start_theta);
+  // Where the plan starts, as the certificate's trial without draws starts (nominalDraw).
+  const VecQ q0 = plan::nominalDraw(c.model().cell(), plan).q0;
   SimState state(q0, VecQ::Zero(q0.size()));
   VecU joints(c.model().controlDim()), tau;
   for (long k = 0; k < steps; ++k) {
@@ -76,17 +77,11 @@ TEST(LoadPlan, ALoadedPlanFileRunsThroughTrackAsTheCertificatesTrialWithoutDraws
   EXPECT_NE(c.result().message.find("certificate"), std::string::npos) << c.result().message;
   const plan::Plan plan = plan::readPlanJson(planFile());
   ASSERT_TRUE(plan.joint_feedback);
-  // The certificate's trial without draws: exact sensors, the plan's law, the part placed
-  // on every finger as the trials place it (traceTrial(-1) starts from the plan's q0, whose
-  // first hold has finger 1 lifted, and the joint law's estimate then loses the part).
-  const plan::CertificateSettings cs;
-  const FeedbackSchedule schedule(c.model(), plan::makeReference(plan),
-                                  plan::lawSensing(c.model().cell().sensing, plan), plan.simulator,
-                                  cs.feedback);
-  plan::TrialDraw draw = plan::nominalDraw(c.model().cell(), plan);
-  draw.q0 = restingConfiguration(c.model(), plan.start, plan.start_theta);
+  // The certificate's trial without draws: exact sensors, the plan's law, the plan's start.
+  const RbsfModel model(loadCell(kDefaultCell));
   std::vector<TrajectorySample> trace;
-  const plan::TrialOutcome nominal = plan::runTrial(schedule, plan, draw, cs.trial, false, &trace);
+  const plan::TrialOutcome nominal =
+      plan::traceTrial(model, plan, plan::CertificateSettings{}, -1, trace);
   ASSERT_TRUE(nominal.success) << nominal.failure;
   const VecQ q = runThroughTrack(c, plan, static_cast<long>(trace.size()));
   EXPECT_LT((q - trace.back().q).cwiseAbs().maxCoeff(), 1e-9) << q.transpose() << "\n"

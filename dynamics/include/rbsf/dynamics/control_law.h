@@ -54,9 +54,10 @@
 /// lambda = servo_acceleration h^2 / joint noise, at most 10: noise-free encoders would
 /// otherwise give alpha = 1, beta = 2, the filter's marginally stable limit):
 ///   e <- e + h e',  r = y_j - Theta_ref,j - e,  e <- e + alpha r,  e' <- e' + beta / h r,
-/// and the part is where the plan has it, offset as the strokes put it: at the start every
-/// finger touches (the cell places them under the part), which fixes the part's pose and
-/// its offset from the plan's (in the part's frame); later the offset pose is moved the
+/// and the part is where the plan has it, offset as the strokes put it: at the start the
+/// fingers of the contacts the plan starts on touch (the cell places them under the part;
+/// one the plan starts lifted tells nothing of it), which fixes the part's pose and its
+/// offset from the plan's (in the part's frame); later the offset pose is moved the
 /// least that keeps the planned contacts on the fingers. The contact forces are predicted
 /// there.
 ///
