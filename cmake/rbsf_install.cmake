@@ -1,8 +1,8 @@
 # The installed package: `cmake --install build --prefix P` puts the headers under
 # P/include/rbsf, the libraries under P/lib, the tools under P/bin and the CMake package
-# under P/lib/cmake/rbsf, so that find_package(rbsf) (with P in CMAKE_PREFIX_PATH) gives
-# rbsf::dynamics, rbsf::plan, rbsf::planner, rbsf::trajopt and rbsf::controller. Every path in it is
-# relative to P: the tree may be moved.
+# under P/lib/cmake/rbsf, so that find_package(rbsf [COMPONENTS ...]) (with P in
+# CMAKE_PREFIX_PATH) gives rbsf::dynamics, rbsf::plan, rbsf::planner, rbsf::trajopt and
+# rbsf::controller. Every path in it is relative to P: the tree may be moved.
 include(CMakePackageConfigHelpers)
 set(RBSF_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/rbsf)
 
@@ -12,29 +12,26 @@ if(_rbsf_kind STREQUAL "STATIC_LIBRARY")
 else()
   set(RBSF_LIBRARY_KIND "shared")
 endif()
-# Extra lines of rbsfConfig.cmake contributed by optional modules (trajopt: Ipopt).
-if(NOT DEFINED RBSF_CONFIG_EXTRA)
-  set(RBSF_CONFIG_EXTRA "")
-endif()
-
-# Libraries and their headers (one include/ folder per module).
+# Libraries and their headers (one include/ folder per module), each module its own export
+# set (rbsf_<module>Targets.cmake), so that find_package(rbsf COMPONENTS ...) loads only
+# what was asked for (rbsfConfig.cmake.in).
 set(_rbsf_modules dynamics plan planner controller)
 if(TARGET rbsf_trajopt)
   list(APPEND _rbsf_modules trajopt)
-  string(APPEND RBSF_CONFIG_EXTRA
-    "find_dependency(PkgConfig)\npkg_check_modules(IPOPT REQUIRED IMPORTED_TARGET ipopt)\n")
+  set(RBSF_WITH_TRAJOPT TRUE)
 else()
+  set(RBSF_WITH_TRAJOPT FALSE)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/trajopt/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
 foreach(_module IN LISTS _rbsf_modules)
-  install(TARGETS rbsf_${_module} EXPORT rbsfTargets
+  install(TARGETS rbsf_${_module} EXPORT rbsf_${_module}Targets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${_module}/include/
           DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(EXPORT rbsf_${_module}Targets NAMESPACE rbsf:: DESTINATION ${RBSF_CMAKE_DIR})
 endforeach()
 
-install(EXPORT rbsfTargets NAMESPACE rbsf:: DESTINATION ${RBSF_CMAKE_DIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/rbsfConfig.cmake.in
   ${PROJECT_BINARY_DIR}/rbsfConfig.cmake INSTALL_DESTINATION ${RBSF_CMAKE_DIR})
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/rbsfConfigVersion.cmake

@@ -5,7 +5,9 @@
 #   scripts/rbsf.sh test      install what is missing, build Release, run the whole test suite
 #   scripts/rbsf.sh sanitize  build with AddressSanitizer + UBSan and run the unit tests
 #   scripts/rbsf.sh tsan      build the controller facade's tests with ThreadSanitizer, run them
-#   scripts/rbsf.sh consumer  install build/ into build/install, build tests/consumer against it, run it
+#   scripts/rbsf.sh consumer  install build/ into build/install, build tests/consumer (every
+#                             component) and tests/consumer_plan (COMPONENTS plan dynamics,
+#                             OMPL and Ipopt hidden) against it, run them
 #   scripts/rbsf.sh fuzz      build the libFuzzer targets (clang, ASan + UBSan) and run each
 #                             for RBSF_FUZZ_RUNS inputs (default 150000) from the fixed seed
 #                             RBSF_FUZZ_SEED (default 1), capped at RBSF_FUZZ_SECONDS (default
@@ -29,6 +31,18 @@ consumer() {  # the installed package as an outside project sees it (tests/consu
     -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
   cmake --build build/consumer -j "$jobs"
   ./build/consumer/rbsf_consumer build/install/share/rbsf/cells/default.yaml
+  # A client of plans and the dynamics alone, where OMPL and Ipopt cannot be found: it runs
+  # a plan file written by the installed tool.
+  rm -rf build/consumer_plan
+  cmake -S tests/consumer_plan -B build/consumer_plan -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_PREFIX_PATH="$root/build/install" -DCMAKE_DISABLE_FIND_PACKAGE_ompl=ON \
+    -DCMAKE_DISABLE_FIND_PACKAGE_PkgConfig=ON >/dev/null
+  cmake --build build/consumer_plan -j "$jobs"
+  build/install/bin/plan-reorientation --cell build/install/share/rbsf/cells/default.yaml \
+    --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --planner support --no-optimize --trials 64 \
+    --quiet --out build/consumer_plan/plan.json
+  ./build/consumer_plan/rbsf_plan_client build/install/share/rbsf/cells/default.yaml \
+    build/consumer_plan/plan.json
 }
 
 cmd="${1:-}"
