@@ -43,8 +43,8 @@ void checkSettings(const CertificateSettings& s) {
     throw InputError("certificate: required_rate must be in [0, 1]");
   if (s.threads < 0) throw InputError("certificate: threads must be >= 0");
   const TrialSettings& t = s.trial;
-  for (double x : {t.position_tolerance, t.angle_tolerance, t.rest_window, t.rest_speed,
-                   t.rest_angular_speed, t.drop_time, t.lost_distance, t.min_phase_run})
+  for (double x : {t.position_tolerance, t.angle_tolerance, t.rest_window, t.drop_time,
+                   t.lost_distance, t.min_phase_run})
     if (!(std::isfinite(x) && x > 0.0))
       throw InputError("certificate: tolerances, windows and limits must be positive");
   if (!(t.saturation_time >= 0.0)) throw InputError("certificate: saturation_time must be >= 0");
@@ -276,8 +276,8 @@ Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateS
   c.settle_time = s.feedback.settle_time;
   c.position_tolerance = s.trial.position_tolerance;
   c.angle_tolerance = s.trial.angle_tolerance;
-  c.rest_speed = s.trial.rest_speed;
-  c.rest_angular_speed = s.trial.rest_angular_speed;
+  c.rest_speed = model.cell().motion_limits.rest_speed;
+  c.rest_angular_speed = model.cell().motion_limits.rest_angular_speed;
   c.sensing = model.cell().sensing;
   c.uncertainty = model.cell().uncertainty;
   // The checks that do not depend on the trials come first: a sequential certificate of a

@@ -202,7 +202,8 @@ TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const 
                   r.angle_error * 180 / M_PI, s.angle_tolerance * 180 / M_PI);
     fail(buf);
   }
-  if (!r.dropped && !(r.speed <= s.rest_speed && r.angular_speed <= s.rest_angular_speed)) {
+  const MotionLimits& rest = schedule.model().cell().motion_limits;
+  if (!r.dropped && !(r.speed <= rest.rest_speed && r.angular_speed <= rest.rest_angular_speed)) {
     std::snprintf(buf, sizeof buf, "not at rest (%.3g m/s, %.3g deg/s)", r.speed,
                   r.angular_speed * 180 / M_PI);
     fail(buf);

@@ -167,7 +167,7 @@ TEST(Certificate, BadSettingsAndAPlanForAnotherCellAreRefused) {
   s.required_rate = 1.5;
   EXPECT_THROW(certify(twoTipsModel(), twoTipsPlan(), s), InputError);
   s = {};
-  s.trial.rest_speed = 0.0;
+  s.trial.rest_window = 0.0;
   EXPECT_THROW(certify(twoTipsModel(), twoTipsPlan(), s), InputError);
   const RbsfModel three(test::makeCell(test::ShapeKind::kEllipse, 3));
   EXPECT_THROW(certify(three, twoTipsPlan(), CertificateSettings{}), InputError);

@@ -80,20 +80,25 @@ TEST(VerdictRules, ABoundEqualToTheRequiredRateCertifiesAndTheNextNumberUpDoesNo
 }
 
 TEST(VerdictRules, ATrialIsAtRestOnlyWhenBothItsSpeedsAre) {
-  // The held part settles but never stops exactly: with either rest limit below its residual
-  // speed (the other generous) the trial is not at rest.
+  // The held part settles but never stops exactly: with either of the cell's rest limits
+  // (motion_limits.rest, the one rest rule) below its residual speed, the trial is not at
+  // rest.
   const Plan plan = holdWithGoalOff(0.0, 0.0);
   const TrialOutcome held = oneTrial(plan);
   ASSERT_TRUE(held.success) << held.failure;
   ASSERT_GT(held.speed, 0.0);
   ASSERT_GT(held.angular_speed, 0.0);
+  ASSERT_LE(held.speed, exactModel().cell().motion_limits.rest_speed);
+  ASSERT_LE(held.angular_speed, exactModel().cell().motion_limits.rest_angular_speed);
   for (const bool linear : {true, false}) {
+    Cell cell = exactModel().cell();
+    MotionLimits& limits = cell.motion_limits;
+    (linear ? limits.rest_speed : limits.rest_angular_speed) =
+        0.5 * (linear ? held.speed : held.angular_speed);
     CertificateSettings s;
     s.trials = 1;
-    (linear ? s.trial.rest_speed : s.trial.rest_angular_speed) =
-        0.5 * (linear ? held.speed : held.angular_speed);
     std::vector<TrialOutcome> outcomes;
-    certify(exactModel(), plan, s, &outcomes);
+    certify(RbsfModel(cell), plan, s, &outcomes);
     ASSERT_EQ(outcomes.size(), 1u);
     EXPECT_FALSE(outcomes[0].success) << (linear ? "linear" : "angular");
     EXPECT_NE(outcomes[0].failure.find("not at rest"), std::string::npos) << outcomes[0].failure;

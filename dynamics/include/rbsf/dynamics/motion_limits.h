@@ -7,11 +7,13 @@
 /// motion_limits:
 ///   part_speed: 0.25       # |(x', y')| of the part's COM at every plan sample [m/s]
 ///   angular_speed: 1.0     # |phi'| at every plan sample [rad/s]
-///   rest: [0.001, 0.001]   # the plan's last sample at rest: at most [m/s, rad/s]
+///   rest: [0.001, 0.001]   # at rest: at most [m/s, rad/s], for the plan's last sample and
+///                          # for a trial's mean speeds over its last second (trial.h)
 /// ```
 ///
 /// Every key is optional, with the defaults above. A plan outside these limits is not
-/// certified, whatever its trials (plan_motion.h, certificate.h).
+/// certified, whatever its trials (plan_motion.h, certificate.h); a trial that does not end
+/// at this rest fails.
 
 namespace rbsf {
 
