@@ -1,8 +1,7 @@
-// A cell controller runs the plan file it is given (ReorientationController::loadFile): the
-// facade's track() at 1 kHz on the project's simulator reproduces the certificate's trial
-// without draws step for step; the former recipe's law (the cell's sensing instead of the plan's)
-// does not hold the plan's part; a plan made for another cell is refused, naming what
-// differs.
+// A cell controller runs the plan file it is given (ReorientationController::loadFile; the
+// loop itself is docs/library.md's recipe, recipe_test.cpp): the former recipe's law (the
+// cell's sensing instead of the plan's) does not hold the plan's part; a plan made for
+// another cell is refused, naming what differs.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -20,74 +19,10 @@
 #include "rbsf/plan/plan_fit.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"
+#include "support_plan_file.h"
 
 namespace rbsf::controller {
 namespace {
-
-const std::string kDefaultCell = std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml";
-
-/// The -15 degree support plan of the default cell, certified by the facade (kAuto) and
-/// written to a file, once per test binary.
-const std::string& planFile() {
-  static const std::string path = [] {
-    ReorientationController c(kDefaultCell);
-    ReorientationRequest r;
-    r.problem.start = {0.1, 0.40, 0.0};
-    r.problem.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
-    r.method = planner::PipelineSettings::Method::kAuto;
-    r.planner.time_limit = 3600.0;
-    r.planner.max_propagations = 200000;
-    r.certificate.trials = 4;
-    r.certificate.required_rate = 0.4;
-    if (!c.plan(r)) throw std::runtime_error("plan() refused");
-    c.wait();
-    if (c.status() != ControllerStatus::kReady) throw std::runtime_error(c.result().message);
-    const std::string file =
-        ::testing::TempDir() + "load_plan_" + std::to_string(getpid()) + ".json";
-    plan::writePlanJson(c.result().plan, file);
-    return file;
-  }();
-  return path;
-}
-
-/// The facade's loop on the nominal plant with exact joints: `steps` periods of track(),
-/// the plant stepped 1 ms each; the final state.
-VecQ runThroughTrack(ReorientationController& c, const plan::Plan& plan, long steps) {
-  const Simulator sim(c.model(), plan.simulator);
-  SimulatorWorkspace ws(c.model().numFingers());
-  // Where the plan starts, as the certificate's trial without draws starts (nominalDraw).
-  const VecQ q0 = plan::nominalDraw(c.model().cell(), plan).q0;
-  SimState state(q0, VecQ::Zero(q0.size()));
-  VecU joints(c.model().controlDim()), tau;
-  for (long k = 0; k < steps; ++k) {
-    for (int j = 0; j < joints.size(); ++j) joints[j] = state.q[layout::inputToConfig(j)];
-    EXPECT_TRUE(c.track(k * plan.simulator.time_step, joints, tau));
-    sim.step(state, tau, ws);
-  }
-  return state.q;
-}
-
-TEST(LoadPlan, ALoadedPlanFileRunsThroughTrackAsTheCertificatesTrialWithoutDraws) {
-  ReorientationController c(kDefaultCell);
-  std::string why;
-  ASSERT_TRUE(c.loadFile(planFile(), &why)) << why;
-  EXPECT_EQ(c.status(), ControllerStatus::kReady);
-  EXPECT_EQ(c.outcome(), PlanOutcome::kLoaded);
-  EXPECT_EQ(c.planId(), 1u);
-  EXPECT_NE(c.result().message.find("certificate"), std::string::npos) << c.result().message;
-  const plan::Plan plan = plan::readPlanJson(planFile());
-  ASSERT_TRUE(plan.joint_feedback);
-  // The certificate's trial without draws: exact sensors, the plan's law, the plan's start.
-  const RbsfModel model(loadCell(kDefaultCell));
-  std::vector<TrajectorySample> trace;
-  const plan::TrialOutcome nominal =
-      plan::traceTrial(model, plan, plan::CertificateSettings{}, -1, trace);
-  ASSERT_TRUE(nominal.success) << nominal.failure;
-  const VecQ q = runThroughTrack(c, plan, static_cast<long>(trace.size()));
-  EXPECT_LT((q - trace.back().q).cwiseAbs().maxCoeff(), 1e-9) << q.transpose() << "\n"
-                                                              << trace.back().q.transpose();
-  EXPECT_LT(std::hypot(q[layout::kX] - plan.goal.x, q[layout::kY] - plan.goal.y), 0.01);
-}
 
 TEST(LoadPlan, TheCellsSensingInsteadOfThePlansDoesNotHoldASupportPlansPart) {
   // The former recipe built the law on the cell's sensing: on this cell, which senses the

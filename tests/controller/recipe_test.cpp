@@ -1,0 +1,160 @@
+// docs/library.md's execution recipe, compiled and run: the code between the two "[recipe]"
+// lines below is the page's block, character for character (ThePageShowsThisCode). Run on
+// the project's simulator as the cell, with exact sensors, it is the certificate's trial
+// without draws, step for step; a plan for another cell stops it at loadFile().
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "rbsf/controller/reorientation_controller.h"
+#include "rbsf/dynamics/sensor_model.h"
+#include "rbsf/dynamics/simulator.h"
+#include "rbsf/plan/certificate.h"
+#include "rbsf/plan/plan_reference.h"
+#include "rbsf/plan/trial.h"
+#include "support_plan_file.h"
+
+namespace rbsf::controller {
+namespace {
+
+const std::string kSourceDir = RBSF_SOURCE_DIR;
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// The project's simulator as the cell a controller drives: the nominal plant started
+/// where the plan starts, its sensors exact (the cell's rate and latency, no noise), as in
+/// the certificate's trial without draws (plan::nominalDraw, plan::runTrial).
+class SimulatedCell {
+ public:
+  SimulatedCell(const RbsfModel& model, const plan::Plan& plan)
+      : sim_(model, plan.simulator),
+        ws_(model.numFingers()),
+        sensors_(plan::lawSensing(model.cell().sensing, plan), plan.simulator.time_step, 0,
+                 /*noise=*/false, Vec2::Zero()),
+        state_(plan::nominalDraw(model.cell(), plan).q0,
+               VecQ::Zero(static_cast<int>(plan.q0.size()))) {}
+
+  /// \brief theta, l_1..l_m at the present tick.
+  void readJoints(VecU& joints) { sensors_.joints(state_.q, joints); }
+  /// \brief The next part pose handed over at this tick, if any.
+  bool readPartPose(double& stamp, Pose& pose) {
+    if (!polled_) {
+      polled_ = true;
+      sensors_.partPose(tick_, state_.q, [&](double s, const Pose& p) {
+        queue_.push_back({s, p});
+      });
+    }
+    if (queue_.empty()) return false;
+    stamp = queue_.front().first;
+    pose = queue_.front().second;
+    queue_.erase(queue_.begin());
+    return true;
+  }
+  /// \brief Hold `tau` over one step; the next tick.
+  void apply(const VecU& tau) {
+    sim_.step(state_, tau, ws_);
+    ++tick_;
+    polled_ = false;
+  }
+  const VecQ& q() const { return state_.q; }
+
+ private:
+  Simulator sim_;
+  SimulatorWorkspace ws_;
+  SensorModel sensors_;
+  SimState state_;
+  long tick_ = 0;
+  bool polled_ = false;
+  std::vector<std::pair<double, Pose>> queue_;
+};
+
+/// The recipe as a function: 2 when the plan is refused, 0 after the plan and `settle`.
+int runPlanFile(const std::string& cell_file, const std::string& plan_file, SimulatedCell& cell,
+                double settle) {
+  // [recipe]
+  rbsf::controller::ReorientationController ctl(cell_file);  // throws rbsf::InputError
+  std::string why;
+  if (!ctl.loadFile(plan_file, &why)) {  // another cell's plan, not certified, not a plan
+    std::fprintf(stderr, "%s\n", why.c_str());
+    return 2;
+  }
+  double duration = 0.0;
+  rbsf::VecQ q0;
+  ctl.publishedPlan(duration, q0);  // the cell starts at rest at q0 (the plan's start)
+  rbsf::VecU joints(ctl.model().controlDim()), tau;
+  double stamp = 0.0;
+  rbsf::Pose pose;
+  const long ticks = std::lround((duration + settle) / 1e-3);
+  for (long k = 0; k < ticks; ++k) {  // the 1 kHz loop thread; plan time t = k ms
+    const double t = 1e-3 * static_cast<double>(k);
+    cell.readJoints(joints);                  // theta, l_1..l_m measured now
+    while (cell.readPartPose(stamp, pose)) {  // each part pose that arrived, when sensed,
+      ctl.addPartPose(stamp, pose);           // stamped when it was taken
+    }
+    ctl.track(t, joints, tau);  // the plan's law: estimate, feedback, contact-force QP
+    cell.apply(tau);            // held until the next tick
+  }
+  // [recipe]
+  return 0;
+}
+
+TEST(ExecutionRecipe, ThePageShowsThisCode) {
+  // The recipe's lines in this file, less the function body's indent.
+  const std::string self = slurp(kSourceDir + "/tests/controller/recipe_test.cpp");
+  const std::string marker = "  // [recipe]\n";
+  const std::size_t a = self.find(marker), b = self.find(marker, a + 1);
+  ASSERT_NE(a, std::string::npos);
+  ASSERT_NE(b, std::string::npos);
+  std::istringstream lines(self.substr(a + marker.size(), b - a - marker.size()));
+  std::string code;
+  for (std::string line; std::getline(lines, line);)
+    code += (line.rfind("  ", 0) == 0 ? line.substr(2) : line) + "\n";
+  // The page's block after the line that names this file.
+  const std::string page = slurp(kSourceDir + "/docs/library.md");
+  const std::size_t named = page.find("<!-- recipe: tests/controller/recipe_test.cpp -->");
+  ASSERT_NE(named, std::string::npos) << "docs/library.md lost its recipe marker";
+  const std::size_t open = page.find("```cpp\n", named);
+  ASSERT_NE(open, std::string::npos);
+  const std::size_t close = page.find("```\n", open + 7);
+  ASSERT_NE(close, std::string::npos);
+  EXPECT_EQ(page.substr(open + 7, close - open - 7), code)
+      << "docs/library.md's recipe differs from tests/controller/recipe_test.cpp's";
+}
+
+TEST(ExecutionRecipe, RunsAPlanFileAsTheCertificatesTrialWithoutDraws) {
+  const RbsfModel model(loadCell(kDefaultCell));
+  const plan::Plan plan = plan::readPlanJson(planFile());
+  std::vector<TrajectorySample> trace;
+  const plan::TrialOutcome nominal =
+      plan::traceTrial(model, plan, plan::CertificateSettings{}, -1, trace);
+  ASSERT_TRUE(nominal.success) << nominal.failure;
+  SimulatedCell cell(model, plan);
+  const double settle = plan::CertificateSettings{}.feedback.settle_time;
+  ASSERT_EQ(runPlanFile(kDefaultCell, planFile(), cell, settle), 0);
+  ASSERT_EQ(static_cast<double>(trace.size()),
+            std::round((plan.duration() + settle) / plan.simulator.time_step));
+  EXPECT_LT((cell.q() - trace.back().q).cwiseAbs().maxCoeff(), 1e-9) << cell.q().transpose() << "\n"
+                                                                     << trace.back().q.transpose();
+  EXPECT_LT(std::hypot(cell.q()[0] - plan.goal.x, cell.q()[1] - plan.goal.y), 0.01);
+}
+
+TEST(ExecutionRecipe, StopsAtLoadFileForAnotherCellsPlan) {
+  const RbsfModel model(loadCell(kDefaultCell));
+  const plan::Plan plan = plan::readPlanJson(planFile());
+  SimulatedCell cell(model, plan);
+  // The heavy cell's part weighs more: the plan is not for it.
+  EXPECT_EQ(runPlanFile(kSourceDir + "/cells/heavy.yaml", planFile(), cell, 0.0), 2);
+}
+
+}  // namespace
+}  // namespace rbsf::controller

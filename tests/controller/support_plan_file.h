@@ -1,0 +1,40 @@
+#pragma once
+// Shared by the controller tests: a certified support plan of the default cell in a file.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "rbsf/controller/reorientation_controller.h"
+
+namespace rbsf::controller {
+
+inline const std::string kDefaultCell = std::string(RBSF_SOURCE_DIR) + "/cells/default.yaml";
+
+/// The -15 degree support plan of the default cell, planned by the CLI's pipeline through
+/// the facade and written to a file, once per test binary.
+inline const std::string& planFile() {
+  static const std::string path = [] {
+    ReorientationController c(kDefaultCell);
+    ReorientationRequest r;
+    r.problem.start = {0.1, 0.40, 0.0};
+    r.problem.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
+    r.method = planner::PipelineSettings::Method::kAuto;
+    r.planner.time_limit = 3600.0;
+    r.planner.max_propagations = 200000;
+    r.certificate.trials = 4;
+    r.certificate.required_rate = 0.4;
+    if (!c.plan(r)) throw std::runtime_error("plan() refused");
+    c.wait();
+    if (c.status() != ControllerStatus::kReady) throw std::runtime_error(c.result().message);
+    const std::string file =
+        ::testing::TempDir() + "support_plan_" + std::to_string(getpid()) + ".json";
+    plan::writePlanJson(c.result().plan, file);
+    return file;
+  }();
+  return path;
+}
+
+}  // namespace rbsf::controller
