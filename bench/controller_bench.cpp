@@ -1,7 +1,9 @@
 // The controller facade's real-time path: sample() and track() on a published plan (the
 // default cell's 15 degree turn, a knot every 1 ms step), at scattered times and at 1 ms
 // steps as a loop samples, alone and while a planning request runs on the worker thread;
-// ReferenceTrajectory::sample() alone for the cost of publication.
+// ReferenceTrajectory::sample() alone for the cost of publication; track() on a plan given
+// to load() (the support planner's certified -15 degree turn), with the run's agreement with
+// the certificate's nominal trial as counters.
 // Part of build/bench/rbsf_micro_bench (micro_bench_main.cpp), e.g.
 //   build/bench/rbsf_micro_bench --benchmark_filter=Controller --benchmark_repetitions=10
 #include <benchmark/benchmark.h>
@@ -11,7 +13,11 @@
 #include <string>
 
 #include "rbsf/controller/reorientation_controller.h"
+#include "rbsf/dynamics/simulator.h"
+#include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_reference.h"
+#include "rbsf/plan/trial.h"
+#include "rbsf/planner/support_planner.h"
 
 namespace rbsf::controller {
 namespace {
@@ -100,6 +106,80 @@ void BM_ControllerTrack(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ControllerTrack);
+
+/// A plan published by load(): the support planner's -15 degree turn of the default cell,
+/// certified (64 trials), and its nominal trial (plan::traceTrial(-1)); then one run of the
+/// facade's loop on the nominal plant with exact joints, as docs/library.md's recipe runs
+/// it: its final state against the trial's and its largest input against the limits.
+struct LoadedRun {
+  std::unique_ptr<ReorientationController> c;
+  plan::Plan plan;
+  std::vector<TrajectorySample> trace;  ///< the nominal trial's states
+  double state_difference = 0.0;        ///< max |q_facade - q_trial| at the end
+  double goal_distance = 0.0;           ///< |(x, y) - goal| at the end [m]
+  double max_input = 0.0;               ///< max over ticks and inputs of |tau_j| / limit_j
+};
+
+const LoadedRun& loadedRun() {
+  static const std::unique_ptr<LoadedRun> run = [] {
+    auto r = std::make_unique<LoadedRun>();
+    r->c = std::make_unique<ReorientationController>(std::string(RBSF_SOURCE_DIR) +
+                                                     "/cells/default.yaml");
+    const RbsfModel& model = r->c->model();
+    planner::SupportPlanner planner(model, planner::SupportPlannerSettings{});
+    planner::Problem problem;
+    problem.start = {0.1, 0.40, 0.0};
+    problem.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
+    if (!planner.solve(problem, r->plan)) std::abort();
+    r->plan.certificate = plan::certify(model, r->plan, plan::CertificateSettings{});
+    std::string why;
+    if (!r->c->load(r->plan, &why)) std::abort();
+    plan::traceTrial(model, r->plan, plan::CertificateSettings{}, -1, r->trace);
+    const Simulator sim(model, r->plan.simulator);
+    SimulatorWorkspace ws(model.numFingers());
+    SimState s(plan::nominalDraw(model.cell(), r->plan).q0, VecQ::Zero(r->plan.q0.size()));
+    VecU joints(model.controlDim()), tau;
+    for (std::size_t k = 0; k < r->trace.size(); ++k) {
+      for (int j = 0; j < joints.size(); ++j) joints[j] = s.q[layout::inputToConfig(j)];
+      r->c->track(1e-3 * static_cast<double>(k), joints, tau);
+      for (int j = 0; j < tau.size(); ++j)
+        r->max_input = std::max(
+            r->max_input,
+            std::abs(tau[j]) / (j == layout::kTauTheta ? model.cell().base.torque_limit
+                                                       : model.cell().fingers[j - 1].force_limit));
+      sim.step(s, tau, ws);
+    }
+    r->state_difference = (s.q - r->trace.back().q).cwiseAbs().maxCoeff();
+    r->goal_distance =
+        std::hypot(s.q[layout::kX] - r->plan.goal.x, s.q[layout::kY] - r->plan.goal.y);
+    return r;
+  }();
+  return *run;
+}
+
+/// track() on the loaded plan as the 1 kHz loop calls it: t advancing by 1 ms through the
+/// plan and its hold, the joints those of the nominal trial at t (a reading the estimate
+/// agrees with); the law restarts with each pass. Counters: the run above.
+void BM_ControllerTrackLoadedPlan(benchmark::State& state) {
+  const LoadedRun& r = loadedRun();
+  ReorientationController& c = *r.c;
+  VecU tau, joints(c.model().controlDim());
+  const long period = static_cast<long>(r.trace.size());
+  long k = 0;
+  for (auto _ : state) {
+    const long n = k % period;
+    const VecQ& q = n == 0 ? r.plan.q0 : r.trace[static_cast<std::size_t>(n - 1)].q;
+    for (int j = 0; j < joints.size(); ++j) joints[j] = q[layout::inputToConfig(j)];
+    benchmark::DoNotOptimize(c.track(1e-3 * static_cast<double>(n), joints, tau));
+    benchmark::ClobberMemory();
+    ++k;
+  }
+  state.counters["vs_trial"] = r.state_difference;
+  state.counters["goal_m"] = r.goal_distance;
+  state.counters["max_input"] = r.max_input;
+  state.counters["certified"] = r.plan.certificate.certified ? 1.0 : 0.0;
+}
+BENCHMARK(BM_ControllerTrackLoadedPlan);
 
 /// sample() while the worker searches (a request with micrometre tolerances that never
 /// finishes; cancelled at the end). On the 2-core VM the two threads share the cores with
