@@ -1,11 +1,10 @@
 // The law's first ticks (control_law.h): with exact sensors on the nominal plant, started
 // where the plan starts (plan::nominalDraw), every input stays within its limit, the law
 // demands no more than a limit, and every contact the plan relies on stays closed: through
-// the first 100 ms of support plans (joint feedback, finger 1 lifted at the start: the
-// joint law's estimate once put the part on every finger and let it fall within 5 ms), and
-// on a kinodynamic plan (part feedback) until its roles first change. Past that change the
-// part-feedback estimate on this plan drifts from the exact plant (docs/notes: the law's
-// first ticks), which this test does not cover.
+// the first 100 ms of support plans (joint feedback; finger 1 lifted at the start, so an
+// estimate that put the part on every finger would let it fall), and on a kinodynamic plan
+// (part feedback) until its roles first change: past its first release the part-feedback
+// estimate leaves even an exact plant, which this test does not cover.
 #include <gtest/gtest.h>
 
 #include <cmath>
