@@ -1,8 +1,12 @@
 // docs/library.md's execution recipe, compiled and run: the code between the two "[recipe]"
 // lines below is the page's block, character for character (ThePageShowsThisCode). Run on
 // the project's simulator as the cell, with exact sensors, it is the certificate's trial
-// without draws, step for step; a plan for another cell stops it at loadFile().
+// without draws, step for step: on a support plan (joint feedback) to its end, on a
+// kinodynamic plan (part poses late at 100 Hz) until that trial stops; a plan for another
+// cell stops it at loadFile().
 #include <gtest/gtest.h>
+
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -17,6 +21,7 @@
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"
+#include "rbsf/planner/reorientation_planner.h"
 #include "support_plan_file.h"
 
 namespace rbsf::controller {
@@ -65,8 +70,11 @@ class SimulatedCell {
     sim_.step(state_, tau, ws_);
     ++tick_;
     polled_ = false;
+    states_.push_back(state_.q);
   }
   const VecQ& q() const { return state_.q; }
+  /// \brief The state after each tick.
+  const std::vector<VecQ>& states() const { return states_; }
 
  private:
   Simulator sim_;
@@ -76,6 +84,7 @@ class SimulatedCell {
   long tick_ = 0;
   bool polled_ = false;
   std::vector<std::pair<double, Pose>> queue_;
+  std::vector<VecQ> states_;
 };
 
 /// The recipe as a function: 2 when the plan is refused, 0 after the plan and `settle`.
@@ -146,6 +155,43 @@ TEST(ExecutionRecipe, RunsAPlanFileAsTheCertificatesTrialWithoutDraws) {
   EXPECT_LT((cell.q() - trace.back().q).cwiseAbs().maxCoeff(), 1e-9) << cell.q().transpose() << "\n"
                                                                      << trace.back().q.transpose();
   EXPECT_LT(std::hypot(cell.q()[0] - plan.goal.x, cell.q()[1] - plan.goal.y), 0.01);
+}
+
+TEST(ExecutionRecipe, RunsAPartFeedbackPlanAsItsTrialStepForStep) {
+  // The part-pose half of the loop: a kinodynamic plan (part feedback; part poses at
+  // 100 Hz, 10 ms late). Its nominal trial loses the part after its first release, and
+  // stops there; until then the recipe's run is the trial's, step for step. The plan is
+  // marked certified so that loadFile takes it: this test is about the loop, not the verdict.
+  const RbsfModel model(loadCell(kDefaultCell));
+  planner::PlannerSettings ps;
+  ps.seed = 5;
+  ps.time_limit = 3600.0;
+  ps.max_propagations = 200000;
+  ps.keep_motion_limits = false;
+  planner::ReorientationPlanner planner(model, ps);
+  planner::Problem problem;
+  problem.start = {0.1, 0.40, 0.0};
+  problem.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
+  plan::Plan plan;
+  ASSERT_TRUE(planner.solve(problem, plan));
+  ASSERT_FALSE(plan.joint_feedback);
+  plan::CertificateSettings one;
+  one.trials = 1;
+  plan.certificate = plan::certify(model, plan, one);
+  plan.certificate.certified = true;
+  const std::string file =
+      ::testing::TempDir() + "recipe_kinodynamic_" + std::to_string(getpid()) + ".json";
+  plan::writePlanJson(plan, file);
+  std::vector<TrajectorySample> trace;
+  plan::traceTrial(model, plan, plan::CertificateSettings{}, -1, trace);
+  ASSERT_GT(trace.size(), 100u);
+  SimulatedCell cell(model, plan);
+  ASSERT_EQ(runPlanFile(kDefaultCell, file, cell, 0.0), 0);
+  ASSERT_GE(cell.states().size(), trace.size());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < trace.size(); ++k)
+    worst = std::max(worst, (cell.states()[k] - trace[k].q).cwiseAbs().maxCoeff());
+  EXPECT_LT(worst, 1e-9) << "over " << trace.size() << " steps";
 }
 
 TEST(ExecutionRecipe, StopsAtLoadFileForAnotherCellsPlan) {
