@@ -143,10 +143,7 @@ const LoadedRun& loadedRun() {
       for (int j = 0; j < joints.size(); ++j) joints[j] = s.q[layout::inputToConfig(j)];
       r->c->track(1e-3 * static_cast<double>(k), joints, tau);
       for (int j = 0; j < tau.size(); ++j)
-        r->max_input = std::max(
-            r->max_input,
-            std::abs(tau[j]) / (j == layout::kTauTheta ? model.cell().base.torque_limit
-                                                       : model.cell().fingers[j - 1].force_limit));
+        r->max_input = std::max(r->max_input, std::abs(tau[j]) / model.cell().inputLimit(j));
       sim.step(s, tau, ws);
     }
     r->state_difference = (s.q - r->trace.back().q).cwiseAbs().maxCoeff();

@@ -18,6 +18,7 @@
 
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/input_file.h"
+#include "rbsf/dynamics/state_layout.h"
 #include "rbsf/dynamics/types.h"
 #include "rbsf/dynamics/yaml_reader.h"
 
@@ -263,5 +264,9 @@ Cell parseCell(const std::string& yaml_text, const std::string& label) {
 }
 
 Cell loadCell(const std::string& path) { return parseCell(readInputFile(path, "cell file"), path); }
+
+double Cell::inputLimit(int j) const {
+  return j == layout::kTauTheta ? base.torque_limit : fingers[j - 1].force_limit;
+}
 
 }  // namespace rbsf

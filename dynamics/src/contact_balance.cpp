@@ -162,8 +162,7 @@ ContactBalance ContactBalancer::solveWith(const VecQ& q, const VecQ& vdot, const
     }
   for (int j = 0; j < nu; ++j) {
     const int row = layout::inputToConfig(j);
-    const double limit =
-        j == layout::kTauTheta ? cell.base.torque_limit : cell.fingers[j - 1].force_limit;
+    const double limit = cell.inputLimit(j);
     // tau_j = b_row - N_row lambda within [-limit, limit].
     G.row(r).head(nl) = N.row(row);
     h[r++] = b[row] - limit;

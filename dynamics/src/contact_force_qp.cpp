@@ -14,10 +14,6 @@ constexpr double kMomentLever = 0.1;
 /// A slip slower than this has no direction [m/s].
 constexpr double kNoSlip = 1e-6;
 
-double inputLimit(const Cell& cell, int j) {
-  return j == layout::kTauTheta ? cell.base.torque_limit : cell.fingers[j - 1].force_limit;
-}
-
 }  // namespace
 
 ContactForceQp::ContactForceQp(const RbsfModel& model, const ContactForceSettings& settings)
@@ -248,9 +244,9 @@ void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactTick& ti
   }
   for (int j = 0; j < nu; ++j) {
     A(r, j) = 1.0;
-    b[r++] = -inputLimit(cell, j);
+    b[r++] = -cell.inputLimit(j);
     A(r, j) = -1.0;
-    b[r++] = -inputLimit(cell, j);
+    b[r++] = -cell.inputLimit(j);
   }
   A(r, lay.margin()) = -1.0;
   b[r++] = -s.margin_cap;
@@ -272,8 +268,7 @@ bool ContactForceQp::solve(const VecQ& q, const VecQ& v, const ContactTick& tick
   x_ = qp_.x;
   tau.resize(nu);
   const Cell& cell = model_.cell();
-  for (int j = 0; j < nu; ++j)
-    tau[j] = std::clamp(x_[j], -inputLimit(cell, j), inputLimit(cell, j));
+  for (int j = 0; j < nu; ++j) tau[j] = std::clamp(x_[j], -cell.inputLimit(j), cell.inputLimit(j));
 
   fn_.setZero(m);
   ft_.setZero(m);

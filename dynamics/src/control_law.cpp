@@ -377,8 +377,7 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
   const Cell& c = schedule_.model().cell();
   bool clamped = false;
   for (int j = 0; j < nu; ++j) {
-    const double limit =
-        j == layout::kTauTheta ? c.base.torque_limit : c.fingers[j - 1].force_limit;
+    const double limit = c.inputLimit(j);
     clamped = clamped || std::abs(tau[j]) >= limit * (1.0 - 1e-9) || std::abs(demand_[j]) > limit;
   }
   return clamped;

@@ -106,9 +106,6 @@ TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const 
     const Pose p = sensors.framePose(q);
     return Eigen::Vector3d(p.x, p.y, p.phi);
   };
-  VecU limit(nu);
-  limit[layout::kTauTheta] = plant.cell().base.torque_limit;
-  for (int i = 0; i < m; ++i) limit[layout::fingerForce(i)] = plant.cell().fingers[i].force_limit;
 
   TrialOutcome r;
   ReferenceSample ref, mid;
@@ -124,7 +121,7 @@ TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const 
       schedule.reference(t + 0.5 * h, mid);
       tau = mid.tau;
       for (int j = 0; j < nu; ++j)
-        if (std::abs(tau[j]) > limit[j]) {
+        if (std::abs(tau[j]) > plant.cell().inputLimit(j)) {
           ++saturated;
           break;
         }

@@ -46,8 +46,7 @@ StartLog firstTicks(const RbsfModel& model, const plan::Plan& plan, double durat
   SimState state(draw.q0, VecQ::Zero(draw.q0.size()));
   const int m = model.numFingers(), nu = model.controlDim();
   VecU limit(nu), joints(nu), tau(nu);
-  limit[layout::kTauTheta] = model.cell().base.torque_limit;
-  for (int i = 0; i < m; ++i) limit[layout::fingerForce(i)] = model.cell().fingers[i].force_limit;
+  for (int j = 0; j < nu; ++j) limit[j] = model.cell().inputLimit(j);
   StartLog log;
   StepReport report;
   const long steps = std::lround(duration / h);

@@ -60,6 +60,10 @@ struct Cell {
   /// \brief Number of fingers m.
   int numFingers() const { return static_cast<int>(fingers.size()); }
 
+  /// \brief The bound on input j in tau order (state_layout.h): torque_limit [N m] for
+  ///        tau_theta, finger j's force_limit [N] for tau_j, j >= 1.
+  double inputLimit(int j) const;
+
   /// \brief Check every invariant the model relies on (positive masses and inertias,
   ///        ordered limits, 1 <= m <= kMaxFingers, a shape) and the ranges of the sensing
   ///        and uncertainty sections (non-negative noise, relative uncertainties in [0, 1)).
