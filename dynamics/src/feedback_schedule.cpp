@@ -48,6 +48,7 @@ FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory t
               e.slip_tolerance = std::max(e.slip_tolerance, settings.estimator_slip_speed);
             e.contact_tolerance = std::max(e.contact_tolerance, 10.0 * sensing.joints.stroke_noise);
             e.activation_distance = std::max(e.activation_distance, 2.0 * e.contact_tolerance);
+            e.drift_moves_part_only = true;
             return e;
           }()),
       reference_(std::move(trajectory)),

@@ -202,15 +202,32 @@ void Simulator::correctDrift(const SimState& state, SimulatorWorkspace& ws) cons
   // Errors at rounding level need no correction (the common case at rest).
   if (n == 0 || ws.ec.head(n).cwiseAbs().maxCoeff() < kDriftFloor) return;
   ws.Dc.resize(n, n);
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b) ws.Dc(a, b) = s.D(ws.corr_row[a], ws.corr_row[b]);
   ws.ec.conservativeResize(n);
+  if (!settings_.drift_moves_part_only) {
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) ws.Dc(a, b) = s.D(ws.corr_row[a], ws.corr_row[b]);
+    choleskySolve(ws.Dc, ws.ec, n);
+    for (int a = 0; a < n; ++a) ws.dq.noalias() -= ws.ec[a] * ws.MinvW.col(ws.corr_row[a]);
+    return;
+  }
+  // The part alone, weighted by its mass block diag(m, m, I): the M-least correction with
+  // the joints held. Slightly damped, since two rows may leave the part one motion.
+  const ObjectParams& o = model_.cell().object;
+  const Eigen::Vector3d w(1.0 / o.mass, 1.0 / o.mass, 1.0 / o.inertia);
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      ws.Dc(a, b) = ws.W.col(ws.corr_row[a])
+                        .head<3>()
+                        .cwiseProduct(w)
+                        .dot(ws.W.col(ws.corr_row[b]).head<3>());
+  ws.Dc.diagonal().array() += 1e-9 * ws.Dc.diagonal().maxCoeff();
   choleskySolve(ws.Dc, ws.ec, n);
-  for (int a = 0; a < n; ++a) ws.dq.noalias() -= ws.ec[a] * ws.MinvW.col(ws.corr_row[a]);
+  for (int a = 0; a < n; ++a)
+    ws.dq.head<3>() -= ws.ec[a] * w.cwiseProduct(ws.W.col(ws.corr_row[a]).head<3>());
 }
 
-void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws,
-                     StepReport* report) const {
+void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws, StepReport* report,
+                     const VecC* slip_tolerance) const {
   const int m = model_.numFingers();
   if (state.q.size() != m + 4 || state.v.size() != m + 4 || tau.size() != m + 1 || ws.data.m != m)
     throw std::invalid_argument("Simulator::step: state, tau or workspace sized for another m");
@@ -232,8 +249,9 @@ void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws,
   auto classify = [&](int r) {
     const double end_gap = (ws.open_row[r] ? 0.0 : ws.gap[r]) + h * s.y[r];
     if (!s.closed[r] && end_gap > settings_.contact_tolerance) return ContactMode::kSeparated;
-    return std::abs(s.y[nu + r]) > settings_.slip_tolerance ? ContactMode::kSlide
-                                                            : ContactMode::kStick;
+    const double slip =
+        slip_tolerance ? (*slip_tolerance)[ws.contact_finger[r]] : settings_.slip_tolerance;
+    return std::abs(s.y[nu + r]) > slip ? ContactMode::kSlide : ContactMode::kStick;
   };
   ImpulseSolvePath path = s.solve();
   bool resolve = false;

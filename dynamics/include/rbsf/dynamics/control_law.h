@@ -32,7 +32,10 @@
 /// itself (the schedule's: the plan's cell and simulator settings, with its contact
 /// memory), so the estimate switches contact modes as the cell does, and whose gains are
 /// the schedule's (feedback_schedule.h):
-///   predict  x_hat <- one simulator step from x_hat under the input commanded,
+///   predict  x_hat <- one simulator step from x_hat under the input commanded (its
+///            drift correction moves the part alone: moving the measured joints would
+///            hand the joint update a residual the model made, which on a pivot grew
+///            about threefold per step),
 ///   joints   x_hat <- x_hat + L_j (y_j - Theta_hat),
 ///   part     at the sample's own time t_s the correction d = L_p (z - pose_hat(t_s))
 ///            (angle wrapped) is carried to the present through the steps since, each
@@ -144,6 +147,9 @@ class ControlLaw {
   /// \brief The M-least change of the estimate's velocity that keeps its contacts' modes:
   ///        zero normal rate where touching, zero slip where sticking.
   void keepContactVelocities();
+  /// \brief The estimator's slip threshold per contact at `knot`: raised where the plan
+  ///        keeps the tip stuck, the plant's elsewhere.
+  void setSlipTolerances(int knot);
   bool control(double t, int knot, const VecX& e, const Eigen::Vector3d& xi, VecU& tau);
   bool computeJointOnly(double t, const VecU& joints, VecU& tau);
 
@@ -159,13 +165,10 @@ class ControlLaw {
   void blendStart(double t, VecX& e);
   VecX start_error_;
   Eigen::Vector3d part_offset_ = Eigen::Vector3d::Zero();  ///< joint-only: part vs plan
-  Eigen::Vector3d e_part_ = Eigen::Vector3d::Zero(),
-                  e_part_rate_ = Eigen::Vector3d::Zero();  ///< slip each touching tip shows [m/s]
-  std::array<Vec2, kMaxFingers> boundary_{};  ///< its point on the boundary, part frame
-  std::array<bool, kMaxFingers> boundary_known_{};
   double start_time_ = 0.0;
   bool start_set_ = false;  ///< control() runs on an exact state (computeFromState)
   SimState state_;          ///< the estimate x_hat with the simulator's contact memory
+  VecC slip_tolerance_;     ///< the estimator's slip threshold per contact [m/s]
   VecU applied_;            ///< input commanded over the last period
   std::vector<Entry> ring_;
   std::vector<PartSample> pending_;

@@ -68,7 +68,8 @@ struct FeedbackSettings {
   double start_blend = 0.5;
   double horizon_tail = 1.0;  ///< Riccati horizon beyond the last knot [s]
   double touch_gap = 5e-4;    ///< a reference contact within this gap touches [m]
-  /// \brief The estimator's model counts a contact sliding only above this slip [m/s].
+  /// \brief The estimator's model counts a contact the plan keeps stuck (S) sliding only
+  ///        above this slip [m/s]; the others at the plant's slip tolerance.
   double estimator_slip_speed = 5e-3;
   /// \brief Without the part's pose the law takes a planned slider to have broken loose
   ///        after pulling it this long [s] (it cannot see the slip).
@@ -131,7 +132,9 @@ class FeedbackSchedule {
   ///        contact tolerances raised to what the measurements can tell apart
   ///        (estimator_slip_speed, when the cell has friction; 10 x the stroke noise), so
   ///        that noise in a correction does not break loose in the model a contact the
-  ///        cell holds.
+  ///        cell holds; its drift correction moves the part alone (the joints are
+  ///        measured). The law passes the plant's slip tolerance for the contacts the plan
+  ///        does not keep stuck, which slide as the plant's do.
   const Simulator& estimatorSimulator() const { return estimator_; }
   const Sensing& sensing() const { return sensing_; }
   const FeedbackSettings& settings() const { return settings_; }

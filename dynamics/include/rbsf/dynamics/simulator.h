@@ -75,7 +75,11 @@ struct SimulatorSettings {
   double regularization = 1e-9;       ///< CFM eps relative to max diag of the Delassus matrix
   bool curvature_terms = true;        ///< add (h/2) h_n, (h/2) h_t to the rows
   bool drift_correction = true;       ///< position correction of closed rows and anchors
-  int max_mode_iterations = 8;        ///< active-set iterations before Lemke
+  /// The drift correction moves the part alone, the joints held: an estimator's, whose
+  /// joints are measured (moving them would feed its joint update a residual it made).
+  /// Not written to plan files: a plant's correction moves every coordinate.
+  bool drift_moves_part_only = false;
+  int max_mode_iterations = 8;  ///< active-set iterations before Lemke
 };
 
 /// \brief Mode of a contact as reported and remembered.
@@ -159,10 +163,11 @@ class Simulator {
   const SimulatorSettings& settings() const { return settings_; }
 
   /// \brief Advance `state` by one step h with tau (order of state_layout.h) held constant.
-  ///        Allocation-free. `report` may be null.
+  ///        Allocation-free. `report` may be null. `slip_tolerance`, when given, replaces
+  ///        the settings' slip_tolerance per contact (finger order) for this step [m/s].
   /// \throws std::invalid_argument when state, tau or workspace are sized for another m.
-  void step(SimState& state, const VecU& tau, SimulatorWorkspace& ws,
-            StepReport* report = nullptr) const;
+  void step(SimState& state, const VecU& tau, SimulatorWorkspace& ws, StepReport* report = nullptr,
+            const VecC* slip_tolerance = nullptr) const;
 
  private:
   int assembleRows(const SimState& state, SimulatorWorkspace& ws) const;
