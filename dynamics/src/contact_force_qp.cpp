@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "rbsf/dynamics/state_layout.h"
 
@@ -24,7 +25,15 @@ ContactForceQp::ContactForceQp(const RbsfModel& model, const ContactForceSetting
       weight_(model.cell().object.mass * model.cell().gravity),
       qp_(model.controlDim() + 2, 0, 0) {
   fn_ = ft_ = VecC::Zero(model.numFingers());
+  contacts_q_ = VecQ::Constant(model.configDim(), std::numeric_limits<double>::quiet_NaN());
   x_ = QpVecN::Zero(layout_.size());
+}
+
+const ModelData& ContactForceQp::updateContacts(const VecQ& q) {
+  if ((q.array() == contacts_q_.array()).all()) return data_;
+  model_.updateContacts(q, data_);
+  contacts_q_ = q;
+  return data_;
 }
 
 void ContactForceQp::predict(const VecQ& q, const VecQ& v, const ContactTick& tick,
@@ -34,7 +43,7 @@ void ContactForceQp::predict(const VecQ& q, const VecQ& v, const ContactTick& ti
   const RbsfModel& model = model_;
   const int m = model.numFingers(), nu = model.controlDim();
   const double mu_s = model.cell().friction.mu_static;
-  model.updateContacts(q, data_);
+  updateContacts(q);
   model.velocityProducts(q, v, data_);
   model.bias(q, v, data_.bias);
   for (int i = 0; i < m; ++i) {

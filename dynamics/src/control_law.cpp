@@ -335,11 +335,10 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
   // slides them or, on an exact state, where they slip.
   ContactTick& tick = tick_;
   tick.roles = schedule_.roles(knot);
-  ModelData& data = qp_.data();
-  data.xi_hint = state_.xi_hint;
+  qp_.data().xi_hint = state_.xi_hint;
+  const ModelData& data = qp_.updateContacts(q_est_);
   const bool exact = exact_state_;
   const FeedbackSettings& fs = schedule_.settings();
-  schedule_.model().updateContacts(q_est_, data);
   const double touch = 10.0 * schedule_.sensing().joints.stroke_noise + 1e-5;
   tick.estimated.fill(ContactMode::kSeparated);
   for (int i = 0; i < m; ++i) {

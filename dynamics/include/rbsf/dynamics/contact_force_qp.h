@@ -129,7 +129,7 @@ class ContactForceQp {
 
   /// \brief The input for the estimated state (q, v) closest in motion to `demand` (tau
   ///        order) that keeps the contacts in their roles (`tick`). Closest points start
-  ///        from data().xi_hint. Allocation-free.
+  ///        from data().xi_hint (updateContacts(q)). Allocation-free.
   /// \return true when every row holds (sigma ~ 0).
   bool solve(const VecQ& q, const VecQ& v, const ContactTick& tick, const VecU& demand, VecU& tau);
 
@@ -151,6 +151,11 @@ class ContactForceQp {
   const ContactForceSettings& settings() const { return settings_; }
   /// \brief The workspace of the contact geometry (its xi_hint seeds the closest points).
   ModelData& data() { return data_; }
+  /// \brief The contact geometry at q (RbsfModel::updateContacts into data(), its closest
+  ///        points searched from data().xi_hint), computed only when data() does not already
+  ///        hold q's (the same bits): the law's classification of the tick's contacts and
+  ///        solve() share one computation per tick.
+  const ModelData& updateContacts(const VecQ& q);
 
  private:
   /// \brief The mode's maps at (q, v): a0_, B_, L_ (file comment) and the row indices.
@@ -165,6 +170,7 @@ class ContactForceQp {
   const RbsfModel& model_;
   ContactForceSettings settings_;
   ModelData data_;
+  VecQ contacts_q_;  ///< the q of data_'s contacts (NaN: none)
   QpLayout layout_;
   double weight_;
   ContactModes mode_{};
