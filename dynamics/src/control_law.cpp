@@ -52,7 +52,6 @@ ControlLaw::ControlLaw(const FeedbackSchedule& schedule)
   at_.q = VecQ::Zero(n);
   at_.v = VecQ::Zero(n);
   tick_.slip_floor = VecC::Zero(schedule.model().numFingers());
-  slip_tolerance_ = VecC::Zero(schedule.model().numFingers());
   at_.tau = VecU::Zero(nu);
   mid_ = at_;
 }
@@ -119,18 +118,6 @@ void ControlLaw::applyPartSample(const PartSample& s) {
   closeGaps(state_.q, state_.mode);
   state_.anchored.fill(false);
   keepContactVelocities();
-}
-
-void ControlLaw::setSlipTolerances(int knot) {
-  // The estimator's raised slip threshold keeps a tip stuck through the estimate's noise;
-  // a tip the plan lets slide or lift must slide as the plant does, or the estimate keeps
-  // it stuck while the real one slips and the two part poses separate.
-  const double plant = schedule_.simulator().settings().slip_tolerance;
-  const double raised = schedule_.estimatorSimulator().settings().slip_tolerance;
-  const ContactRoles& roles = schedule_.roles(knot);
-  for (int i = 0; i < slip_tolerance_.size(); ++i)
-    slip_tolerance_[i] =
-        roles[i] == ContactRole::kStick || roles[i] == ContactRole::kUnplanned ? raised : plant;
 }
 
 void ControlLaw::keepContactVelocities() {
@@ -262,8 +249,8 @@ bool ControlLaw::compute(double t, const VecU& joints, VecU& tau) {
   } else {
     const long advance = std::max(1L, std::lround((t - entry(step_).t) / h));
     for (long a = 0; a < advance; ++a) {
-      setSlipTolerances(entry(step_).knot);
-      schedule_.estimatorSimulator().step(state_, applied_, *ws_, nullptr, &slip_tolerance_);
+      schedule_.estimatorSimulator().step(state_, applied_, *ws_, nullptr,
+                                          &schedule_.estimatorSlipTolerance(entry(step_).knot));
       Entry& next = entry(++step_);
       next.t = entry(step_ - 1).t + h;
       next.knot = schedule_.knotAt(next.t);

@@ -91,6 +91,15 @@ FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory t
     ContactRoles roles;
     modes_.push_back(plannedModes(t, ws, roles));
     roles_.push_back(roles);
+    // The raised slip threshold keeps a tip stuck through the estimate's noise; a tip the
+    // plan lets slide or lift must slip as the plant's does, or the estimate keeps it stuck
+    // while the real one slides and the two part poses separate.
+    VecC slip(model_.numFingers());
+    for (int i = 0; i < slip.size(); ++i)
+      slip[i] = roles[i] == ContactRole::kStick || roles[i] == ContactRole::kUnplanned
+                    ? estimator_.settings().slip_tolerance
+                    : simulator_.settings().slip_tolerance;
+    estimator_slip_.push_back(slip);
     ModeLinearization lin = dynamics.linearize(at.q, at.v, mid.tau, modes_.back());
     F_.push_back(lin.F);
     const MatrixXd A2 = lin.A * lin.A;

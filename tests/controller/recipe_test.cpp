@@ -21,8 +21,8 @@
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"
-#include "rbsf/planner/reorientation_planner.h"
 #include "support_plan_file.h"
+#include "trajopt_support.h"
 
 namespace rbsf::controller {
 namespace {
@@ -162,18 +162,8 @@ TEST(ExecutionRecipe, RunsAPartFeedbackPlanAsItsTrialStepForStep) {
   // 100 Hz, 10 ms late). Its nominal trial loses the part after its first release, and
   // stops there; until then the recipe's run is the trial's, step for step. The plan is
   // marked certified so that loadFile takes it: this test is about the loop, not the verdict.
-  const RbsfModel model(loadCell(kDefaultCell));
-  planner::PlannerSettings ps;
-  ps.seed = 5;
-  ps.time_limit = 3600.0;
-  ps.max_propagations = 200000;
-  ps.keep_motion_limits = false;
-  planner::ReorientationPlanner planner(model, ps);
-  planner::Problem problem;
-  problem.start = {0.1, 0.40, 0.0};
-  problem.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
-  plan::Plan plan;
-  ASSERT_TRUE(planner.solve(problem, plan));
+  const RbsfModel& model = trajopt::test::defaultModel();
+  plan::Plan plan = trajopt::test::shortPlan();
   ASSERT_FALSE(plan.joint_feedback);
   plan::CertificateSettings one;
   one.trials = 1;

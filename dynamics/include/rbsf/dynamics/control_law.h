@@ -147,9 +147,6 @@ class ControlLaw {
   /// \brief The M-least change of the estimate's velocity that keeps its contacts' modes:
   ///        zero normal rate where touching, zero slip where sticking.
   void keepContactVelocities();
-  /// \brief The estimator's slip threshold per contact at `knot`: raised where the plan
-  ///        keeps the tip stuck, the plant's elsewhere.
-  void setSlipTolerances(int knot);
   bool control(double t, int knot, const VecX& e, const Eigen::Vector3d& xi, VecU& tau);
   bool computeJointOnly(double t, const VecU& joints, VecU& tau);
 
@@ -168,7 +165,6 @@ class ControlLaw {
   double start_time_ = 0.0;
   bool start_set_ = false;  ///< control() runs on an exact state (computeFromState)
   SimState state_;          ///< the estimate x_hat with the simulator's contact memory
-  VecC slip_tolerance_;     ///< the estimator's slip threshold per contact [m/s]
   VecU applied_;            ///< input commanded over the last period
   std::vector<Entry> ring_;
   std::vector<PartSample> pending_;

@@ -133,8 +133,8 @@ class FeedbackSchedule {
   ///        (estimator_slip_speed, when the cell has friction; 10 x the stroke noise), so
   ///        that noise in a correction does not break loose in the model a contact the
   ///        cell holds; its drift correction moves the part alone (the joints are
-  ///        measured). The law passes the plant's slip tolerance for the contacts the plan
-  ///        does not keep stuck, which slide as the plant's do.
+  ///        measured). Its steps take estimatorSlipTolerance(k): the plant's tolerance for
+  ///        the contacts the plan does not keep stuck, which slide as the plant's do.
   const Simulator& estimatorSimulator() const { return estimator_; }
   const Sensing& sensing() const { return sensing_; }
   const FeedbackSettings& settings() const { return settings_; }
@@ -170,6 +170,10 @@ class FeedbackSchedule {
   ///        the simulator step from the reference (a touching contact sticks or slides the
   ///        way the reference slips it; an untouched one is lifted).
   const ContactRoles& roles(int k) const { return roles_[k]; }
+  /// \brief The estimator's slip tolerance per contact at knot k (Simulator::step's
+  ///        `slip_tolerance`) [m/s]: its raised one where the plan keeps the tip stuck (S),
+  ///        the plant's elsewhere.
+  const VecC& estimatorSlipTolerance(int k) const { return estimator_slip_[k]; }
 
  private:
   void computeLqr(const std::vector<Eigen::MatrixXd>& tangent);
@@ -190,6 +194,7 @@ class FeedbackSchedule {
   std::vector<Eigen::MatrixXd> Ad_, Bd_, F_, K_, Ki_, Lj_, Lp_;
   std::vector<ContactModes> modes_;
   std::vector<ContactRoles> roles_;
+  std::vector<VecC> estimator_slip_;
 };
 
 }  // namespace rbsf
