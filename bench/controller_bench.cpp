@@ -114,6 +114,7 @@ BENCHMARK(BM_ControllerTrack);
 struct LoadedRun {
   std::unique_ptr<ReorientationController> c;
   plan::Plan plan;
+  plan::Certificate certificate;        ///< of `plan`, 64 trials
   std::vector<TrajectorySample> trace;  ///< the nominal trial's states
   double state_difference = 0.0;        ///< max |q_facade - q_trial| at the end
   double goal_distance = 0.0;           ///< |(x, y) - goal| at the end [m]
@@ -131,9 +132,9 @@ const LoadedRun& loadedRun() {
     problem.start = {0.1, 0.40, 0.0};
     problem.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
     if (!planner.solve(problem, r->plan)) std::abort();
-    r->plan.certificate = plan::certify(model, r->plan, plan::CertificateSettings{});
+    r->certificate = plan::certify(model, r->plan, plan::CertificateSettings{});
     std::string why;
-    if (!r->c->load(r->plan, &why)) std::abort();
+    if (!r->c->load(plan::PlanRecord{r->plan, {}, r->certificate}, &why)) std::abort();
     plan::traceTrial(model, r->plan, plan::CertificateSettings{}, -1, r->trace);
     const Simulator sim(model, r->plan.simulator);
     SimulatorWorkspace ws(model.numFingers());
@@ -174,7 +175,7 @@ void BM_ControllerTrackLoadedPlan(benchmark::State& state) {
   state.counters["vs_trial"] = r.state_difference;
   state.counters["goal_m"] = r.goal_distance;
   state.counters["max_input"] = r.max_input;
-  state.counters["certified"] = r.plan.certificate.certified ? 1.0 : 0.0;
+  state.counters["certified"] = r.certificate.certified ? 1.0 : 0.0;
 }
 BENCHMARK(BM_ControllerTrackLoadedPlan);
 
@@ -206,7 +207,7 @@ BENCHMARK(BM_ControllerSampleWhilePlanning);
 /// The reference alone, without the facade's publication: the facade's overhead is the
 /// difference to BM_ControllerSample.
 void BM_ReferenceTrajectorySample(benchmark::State& state) {
-  const plan::Plan plan = readyController().result().plan;
+  const plan::Plan plan = readyController().result().record.plan;
   const ReferenceTrajectory reference = plan::makeReference(plan);
   ReferenceSample ref;
   reference.sample(0.0, ref);

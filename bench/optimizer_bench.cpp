@@ -21,7 +21,7 @@ void BM_OptimizerSolve(benchmark::State& state) {
     out = optimizer.optimize(plan);
     benchmark::DoNotOptimize(out.plan.segments.data());
   }
-  state.counters["ipopt_iterations"] = out.plan.optimization.iterations;
+  state.counters["ipopt_iterations"] = out.summary.iterations;
   state.counters["converged"] = out.success ? 1 : 0;
   state.counters["segments"] = static_cast<double>(plan.segments.size());
 }

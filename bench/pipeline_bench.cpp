@@ -73,7 +73,6 @@ int run(int argc, char** argv) {
       const rbsf::RbsfModel model(c);
       rbsf::trajopt::OptimizerSettings os;
       os.knots = knots;
-      const rbsf::trajopt::PlanOptimizer optimizer(model, os);
       std::vector<double> rates, walls;
       int certified = 0;
       for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
@@ -87,17 +86,19 @@ int run(int argc, char** argv) {
           s.support.friction_uses = {1.0};
           s.support.search.support.balance.normal_margin = 0.0;
         }
-        s.refine = rbsf::trajopt::refinementStep(optimizer);
+        s.optimize = true;
+        s.optimizer = os;
         const rbsf::planner::PipelineOutcome out =
             rbsf::planner::ReorientationPipeline(model, s).run(bp.problem);
         const bool ok = out.status == rbsf::planner::PipelineStatus::kCertified;
         certified += ok ? 1 : 0;
-        if (ok) rates.push_back(out.plan.certificate.success_rate);
+        if (ok) rates.push_back(out.record.certificate.success_rate);
         walls.push_back(out.wall_time);
         std::string kept = "-", tried;
         if (out.chosen >= 0) {
           const rbsf::planner::PipelineAttempt& a = out.attempts[out.chosen];
-          kept = a.method + (a.method == "support" ? "" : " s" + std::to_string(a.seed)) +
+          const bool support = a.search == rbsf::planner::SearchKind::kSupport;
+          kept = a.method() + (support ? "" : " s" + std::to_string(a.seed)) +
                  (a.refined ? " refined" : "");
         }
         for (const rbsf::planner::PipelineAttempt& a : out.attempts) {
@@ -105,7 +106,9 @@ int run(int argc, char** argv) {
           const std::string got =
               std::to_string(a.certificate.successes) + "/" + std::to_string(a.certificate.trials);
           std::snprintf(buf, sizeof buf, "%s%s:%s", tried.empty() ? "" : " ",
-                        a.method == "support" ? "S" : std::to_string(a.seed).c_str(),
+                        a.search == rbsf::planner::SearchKind::kSupport
+                            ? "S"
+                            : std::to_string(a.seed).c_str(),
                         !a.found            ? "none"
                         : a.certificate.ran ? got.c_str()
                                             : "?");
@@ -114,8 +117,8 @@ int run(int argc, char** argv) {
         std::printf("%-9s %-6s %4d %-13s %-20s %7.0f%% %6zu %7.1fs  %s\n", bp.name.c_str(),
                     blind ? "joints" : "part", seed, rbsf::planner::statusText(out.status),
                     kept.c_str(),
-                    out.plan.certificate.ran ? 100 * out.plan.certificate.success_rate : NAN,
-                    out.plan.phaseSequence().size(), out.wall_time, tried.c_str());
+                    out.record.certificate.ran ? 100 * out.record.certificate.success_rate : NAN,
+                    out.record.plan.phaseSequence().size(), out.wall_time, tried.c_str());
         std::fflush(stdout);
       }
       pairs += seeds;

@@ -21,6 +21,7 @@
 
 #include "bench_stats.h"
 #include "rbsf/dynamics/cell.h"
+#include "rbsf/planner/refine_and_certify.h"
 #include "rbsf/planner/support_planner.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/trajopt/plan_refinement.h"
@@ -72,7 +73,6 @@ int run(int argc, char** argv) {
                         {"90", {-0.21, 0.43, 90 * deg}, true}};
   os.knots = knots;
   os.max_solve_time = 3600.0;  // bounded by iterations: the same result on a loaded machine
-  const rbsf::trajopt::PlanOptimizer optimizer(model, os);
   std::printf("%-4s %10s %10s %10s %9s %-22s %6s %14s\n", "turn", "planner", "refined", "written",
               "effort", "Ipopt (iterations)", "solves", "median solve s");
   for (const Case& c : cases) {
@@ -104,11 +104,13 @@ int run(int argc, char** argv) {
     }
     const rbsf::plan::PlanMargins margins = planner.margins();
     rbsf::trajopt::RefineSettings rs;
-    rs.certificate.trials = trials;
     rs.support = support;
-    const rbsf::trajopt::RefineOutcome out =
-        rbsf::trajopt::refinePlan(optimizer, plan, rs, margins);
-    const rbsf::plan::OptimizationSummary& o = out.plan.optimization;
+    rbsf::plan::CertificateSettings cs;
+    cs.trials = trials;
+    const rbsf::trajopt::PlanRefiner refiner(model, os, rs);
+    const rbsf::planner::RefinementResult out =
+        rbsf::planner::refineAndCertify(refiner, plan, margins, cs);
+    const rbsf::plan::OptimizationSummary& o = out.record.optimization;
     // The optimiser alone, timed: the refinement's first solve again.
     const rbsf::trajopt::PlanOptimizer first(
         model, rbsf::trajopt::supportOptimizerSettings(os, margins, support));
@@ -116,7 +118,7 @@ int run(int argc, char** argv) {
     rbsf::plan::OptimizationSummary timed;
     for (int r = 0; r < repeats; ++r) {
       const auto t0 = std::chrono::steady_clock::now();
-      timed = first.optimize(plan).plan.optimization;
+      timed = first.optimize(plan).summary;
       times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
     auto cert = [](const rbsf::plan::Certificate& k) {
@@ -127,19 +129,19 @@ int run(int argc, char** argv) {
     };
     const std::string refined =
         out.refined
-            ? cert(out.plan.certificate)
+            ? cert(out.record.certificate)
             : (o.refined_success_rate >= 0.0
                    ? std::to_string(static_cast<int>(std::lround(100 * o.refined_success_rate))) +
                          "%"
                    : "-");
     char ipopt[64];
-    std::snprintf(ipopt, sizeof ipopt, "%s (%d)", o.status.c_str(), o.iterations);
+    std::snprintf(ipopt, sizeof ipopt, "%s (%d)", toString(o.status), o.iterations);
     std::printf("%-4s %10s %10s %10s %9.3f %-22s %6d %14.3f\n", c.label,
                 cert(out.planner_certificate).c_str(), refined.c_str(),
                 out.refined ? "refined" : "planner's",
-                o.cost_before > 0.0 ? o.cost_after / o.cost_before : 1.0, ipopt, out.attempts,
+                o.cost_before > 0.0 ? o.cost_after / o.cost_before : 1.0, ipopt, out.solves,
                 rbsf::bench::median(times));
-    std::printf("     timed solve: %s, %d iterations\n", timed.status.c_str(), timed.iterations);
+    std::printf("     timed solve: %s, %d iterations\n", toString(timed.status), timed.iterations);
     if (!out.refined) std::printf("     why: %s\n", out.reason.c_str());
   }
   std::printf(

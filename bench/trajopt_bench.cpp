@@ -21,6 +21,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "bench_stats.h"
@@ -88,7 +89,7 @@ int run(int argc, char** argv) {
   const Case cases[] = {{"30 deg", {0.1, 0.40, -30 * deg}},
                         {"90 deg", {-0.1, 0.40, -90 * deg}},
                         {"180 deg", {-0.1, 0.40, 180 * deg}}};
-  const rbsf::trajopt::PlanOptimizer optimizer(model, os);
+  rbsf::trajopt::PlanOptimizer(model, os);  // bad settings: exit 2 before any search
   std::printf("%-8s %6s %9s %5s %10s %9s %8s %10s %6s %9s %10s  (knots %d, %d seeds)\n", "problem",
               "plans", "converged", "iter", "median[s]", "worst[s]", "cpu[s]", "effort -%", "kept",
               "certified", "kept/plan", knots, seeds);
@@ -100,44 +101,48 @@ int run(int argc, char** argv) {
       // The product's pipeline call, one kinodynamic search with this seed, whose exact plan
       // is refined (the refinement step reports its outcome and is timed).
       rbsf::planner::PipelineSettings ps;
-      ps.method = rbsf::planner::PipelineSettings::Method::kKinodynamic;
+      ps.method = rbsf::planner::PipelineMethod::kKinodynamic;
       ps.max_attempts = 1;
       ps.planner.seed = static_cast<std::uint32_t>(seed);
       ps.planner.time_limit = time_limit;
-      rbsf::trajopt::RefineOutcome out;
+      ps.optimize = true;
+      ps.optimizer = os;
+      rbsf::planner::RefinementResult out;
       bool refined = false;
       double cpu = 0.0;
+      std::clock_t cpu0 = 0;
       std::string planned_phases;  // of the planner's plan, which the step refines
       std::size_t planned_segments = 0;
-      const rbsf::plan::RefineStep step = rbsf::trajopt::refinementStep(
-          optimizer, [&](const rbsf::trajopt::RefineOutcome& r) { out = r; });
-      ps.refine = [&](const rbsf::plan::Plan& plan, const rbsf::plan::PlanMargins& margins,
-                      const rbsf::plan::CertificateSettings& cs, bool& kept, std::string& note) {
-        planned_phases = plan.phaseSequence();
-        planned_segments = plan.segments.size();
-        const std::clock_t cpu0 = std::clock();
-        rbsf::plan::Plan result = step(plan, margins, cs, kept, note);
-        cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
-        refined = true;
-        return result;
+      rbsf::planner::RunContext context;
+      context.on_event = [&](const rbsf::planner::PipelineEvent& e) {
+        if (const auto* found = std::get_if<rbsf::planner::PlanFound>(&e)) {
+          planned_phases = found->plan.phaseSequence();
+          planned_segments = found->plan.segments.size();
+        } else if (const auto* stage = std::get_if<rbsf::planner::StageStarted>(&e)) {
+          if (stage->stage == rbsf::planner::PipelineStage::kRefining) cpu0 = std::clock();
+        } else if (const auto* r = std::get_if<rbsf::planner::PlanRefined>(&e)) {
+          cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+          out = r->refinement;
+          refined = true;
+        }
       };
       rbsf::planner::Problem p;
       p.start = {0.1, 0.40, 0.0};
       p.goal = c.goal;
       rbsf::planner::ReorientationPipeline pipeline(model, ps);
-      pipeline.run(p);
+      pipeline.run(p, context);
       if (!refined) continue;  // no exact plan: nothing to refine
       ++plans;
       cpu_times.push_back(cpu);
-      const rbsf::plan::OptimizationSummary& o = out.plan.optimization;
+      const rbsf::plan::OptimizationSummary& o = out.record.optimization;
       if (verbose)
         std::printf(
             "  seed %d: %s (%s, %zu segments) %s, %d iterations, %.3f s (refinement cpu %.3f "
             "s), effort %.4f -> %.4f, %s, %s %s\n",
-            seed, c.label, planned_phases.c_str(), planned_segments, o.status.c_str(), o.iterations,
-            o.solve_time, cpu, o.cost_before, o.cost_after,
+            seed, c.label, planned_phases.c_str(), planned_segments, toString(o.status),
+            o.iterations, o.solve_time, cpu, o.cost_before, o.cost_after,
             out.refined ? "refinement kept" : "planner's plan kept",
-            out.plan.certificate.certified ? "certified" : "not certified", o.message.c_str());
+            out.record.certificate.certified ? "certified" : "not certified", o.message.c_str());
       times.push_back(o.solve_time);
       iters.push_back(o.iterations);
       if (out.converged) {
@@ -145,7 +150,7 @@ int run(int argc, char** argv) {
         reductions.push_back(100.0 * (1.0 - o.cost_after / o.cost_before));
       }
       kept += out.refined;
-      certified += out.plan.certificate.certified;
+      certified += out.record.certificate.certified;
       kept_effort.push_back(out.refined && o.cost_before > 0.0 ? o.cost_after / o.cost_before
                                                                : 1.0);
     }

@@ -15,14 +15,7 @@ endif()
 # Libraries and their headers (one include/ folder per module), each module its own export
 # set (rbsf_<module>Targets.cmake), so that find_package(rbsf COMPONENTS ...) loads only
 # what was asked for (rbsfConfig.cmake.in).
-set(_rbsf_modules dynamics plan planner controller)
-if(TARGET rbsf_trajopt)
-  list(APPEND _rbsf_modules trajopt)
-  set(RBSF_WITH_TRAJOPT TRUE)
-else()
-  set(RBSF_WITH_TRAJOPT FALSE)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/trajopt/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-endif()
+set(_rbsf_modules dynamics plan trajopt planner controller)
 foreach(_module IN LISTS _rbsf_modules)
   install(TARGETS rbsf_${_module} EXPORT rbsf_${_module}Targets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}

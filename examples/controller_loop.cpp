@@ -35,7 +35,7 @@
 #include "rbsf/dynamics/sensor_model.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/dynamics/state_layout.h"
-#include "rbsf/plan/plan.h"
+#include "rbsf/plan/plan_file.h"
 #include "rbsf/plan/plan_fit.h"
 #include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/cli_values.h"
@@ -121,11 +121,12 @@ int run(int argc, char** argv) {
   parseCommandLine(app, argc, argv);
 
   controller::ReorientationRequest request;
-  plan::Plan given;  // --plan: the plan to run, its start the plant's
+  plan::PlanRecord given_record;  // --plan: the plan to run, its start the plant's
+  const plan::Plan& given = given_record.plan;
   if (!plan_file.empty()) {
     if (!start_text.empty() || !goal_text.empty())
       throw InputError("--plan: the plan file gives the start and the goal, not --start/--goal");
-    given = plan::readPlanJson(plan_file);
+    given_record = plan::readPlanJson(plan_file);
     request.problem.start = given.start;
     request.problem.goal = given.goal;
     request.problem.start_theta = given.start_theta;
@@ -171,10 +172,10 @@ int run(int argc, char** argv) {
   if (!plan_file.empty()) {
     // 1'. A plan file: checked against the cell and published; no planning.
     std::string why;
-    if (!ctl.load(given, &why, accept_uncertified)) {
+    if (!ctl.load(given_record, &why, accept_uncertified)) {
       // A plan for this cell that failed its certificate is not run (4), as a planned one;
       // anything else is bad input (2).
-      if (!plan::planCellMismatch(model, given).empty() || given.certificate.certified)
+      if (!plan::planCellMismatch(model, given).empty() || given_record.certificate.certified)
         throw InputError("--plan " + plan_file + ": " + why);
       std::fprintf(stderr, "rbsf-controller-loop: the plan was not run: %s\n", why.c_str());
       return 4;
@@ -203,7 +204,7 @@ int run(int argc, char** argv) {
     std::printf(
         "planning   %s after %.3f s (%ld loop ticks holding the part, which moved at most "
         "%.2e m or rad; %ld samples said \"no plan\")\n",
-        controller::toString(planned.outcome), planned.plan.planning_time, tick, hold_error,
+        controller::toString(planned.outcome), planned.record.plan.planning_time, tick, hold_error,
         no_plan_samples);
     if (!planned.message.empty()) std::printf("           %s\n", planned.message.c_str());
     if (ctl.status() != controller::ControllerStatus::kReady) {
@@ -245,9 +246,9 @@ int run(int argc, char** argv) {
       std::remainder(state.q[layout::kPhi] - goal.phi, 2.0 * M_PI) * 180.0 / M_PI;
   const controller::RequestResult result = ctl.result();
   std::printf("plan       %.3f s, %zu segments, phases %s (%s)\n", duration,
-              result.plan.segments.size(), result.plan.phaseSequence().c_str(),
+              result.record.plan.segments.size(), result.record.plan.phaseSequence().c_str(),
               controller::toString(result.outcome));
-  std::printf("certificate %s\n", plan::verdictText(result.plan.certificate).c_str());
+  std::printf("certificate %s\n", plan::verdictText(result.record.certificate).c_str());
   std::printf(
       "executed   max joint error %.3e (rad or m; start offset %.1e); %.2f s after the "
       "end the part is %.4f m and %.3f deg from the goal\n",

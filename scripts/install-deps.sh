@@ -11,7 +11,7 @@ packages=(
   coinor-libipopt-dev
   # An optimised BLAS for MUMPS's dense frontal matrices (it becomes libblas.so.3 through
   # Debian's alternatives): about a quarter off each Ipopt iteration against the reference
-  # BLAS (docs/notes/2026-11-21-optimiser-speed-ordering-and-blas.md). The serial build:
+  # BLAS. The serial build:
   # Ipopt solves run one per thread.
   libopenblas0-serial
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev

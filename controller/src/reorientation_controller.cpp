@@ -3,17 +3,14 @@
 #include <algorithm>
 #include <exception>
 #include <mutex>
-#include <optional>
 #include <thread>
 #include <utility>
+#include <variant>
 
 #include "rbsf/dynamics/control_law.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/plan/plan_fit.h"
 #include "rbsf/plan/plan_reference.h"
-#ifdef RBSF_CONTROLLER_WITH_TRAJOPT
-#include "rbsf/trajopt/plan_refinement.h"
-#endif
 #include "snapshot_slots.h"
 
 namespace rbsf::controller {
@@ -92,8 +89,10 @@ struct ReorientationController::Impl {
     p.law.reset();
     tracked_id = p.id;
   }
-  void finish(PlanOutcome outcome, std::string message, plan::Plan plan, double best,
+  void finish(PlanOutcome outcome, std::string message, plan::PlanRecord record, double best,
               bool publish_it);
+  /// \brief The pipeline's settings of `request` on this cell, with the facade's feedback.
+  planner::PipelineSettings pipelineSettings(const ReorientationRequest& request) const;
 
   const RbsfModel model;
   const FeedbackSettings feedback;
@@ -109,18 +108,18 @@ struct ReorientationController::Impl {
   RequestResult result;
 };
 
-void ReorientationController::Impl::finish(PlanOutcome how, std::string message, plan::Plan plan,
-                                           double best, bool publish_it) {
+void ReorientationController::Impl::finish(PlanOutcome how, std::string message,
+                                           plan::PlanRecord record, double best, bool publish_it) {
   std::uint64_t id = 0;
   if (publish_it) {
     id = next_id++;
-    slots.publish(std::make_unique<const PublishedPlan>(id, model, plan, feedback));
+    slots.publish(std::make_unique<const PublishedPlan>(id, model, record.plan, feedback));
   }
   {
     const std::lock_guard<std::mutex> lock(mutex);
     result.outcome = how;
     result.message = std::move(message);
-    result.plan = std::move(plan);
+    result.record = std::move(record);
     result.best_distance = best;
     result.plan_id = id;
   }
@@ -128,60 +127,58 @@ void ReorientationController::Impl::finish(PlanOutcome how, std::string message,
   status.store(publish_it ? ControllerStatus::kReady : ControllerStatus::kFailed);
 }
 
+planner::PipelineSettings ReorientationController::Impl::pipelineSettings(
+    const ReorientationRequest& request) const {
+  planner::PipelineSettings pipeline;
+  pipeline.method = request.method;
+  pipeline.max_attempts = request.max_attempts;
+  pipeline.planner = request.planner;
+  pipeline.feedback = feedback;
+  pipeline.certificate = request.certificate;
+  pipeline.optimize = request.optimize;
+  pipeline.optimizer = request.optimizer;
+  return pipeline;
+}
+
 void ReorientationController::Impl::run(ReorientationRequest request) {
   double best = 0.0;
   try {
-    planner::PipelineSettings pipeline;
-    pipeline.method = request.method;
-    pipeline.max_attempts = request.max_attempts;
-    pipeline.planner = request.planner;
-    pipeline.planner.cancel = &cancel;
-    pipeline.planner.progress = std::move(request.progress);
-    pipeline.support.feedback = feedback;
-    pipeline.certificate = request.certificate;
-    pipeline.certificate.feedback = feedback;
-    std::string note;
-#ifdef RBSF_CONTROLLER_WITH_TRAJOPT
-    std::optional<trajopt::PlanOptimizer> optimizer;  // its settings are checked only when used
-    if (request.optimize) {
-      trajopt::OptimizerSettings opt = request.optimizer;
-      opt.cancel = &cancel;
-      optimizer.emplace(model, opt);
-      pipeline.refine = trajopt::refinementStep(*optimizer);
-    }
-#else
-    if (request.optimize) note = "optimisation not used: rbsf was built without rbsf::trajopt; ";
-#endif
-    planner::ReorientationPipeline pipe(model, std::move(pipeline));
-    planner::PipelineOutcome out = pipe.run(request.problem);
+    planner::ReorientationPipeline pipe(model, pipelineSettings(request));
+    planner::RunContext context;
+    context.cancel = &cancel;
+    if (request.progress)
+      context.on_event = [&request](const planner::PipelineEvent& e) {
+        if (const auto* p = std::get_if<planner::SearchProgress>(&e)) request.progress(p->progress);
+      };
+    planner::PipelineOutcome out = pipe.run(request.problem, context);
     best = out.best_distance;
-    plan::Plan& plan = out.plan;
-    const planner::PipelineAttempt* chosen = out.chosen >= 0 ? &out.attempts[out.chosen] : nullptr;
-    if (chosen != nullptr && !chosen->refined && !chosen->note.empty()) note += chosen->note + "; ";
+    const planner::PipelineAttempt* chosen = out.chosenAttempt();
+    std::string note;
+    if (chosen != nullptr && !chosen->refined && !chosen->note.empty()) note = chosen->note + "; ";
+    plan::PlanRecord& record = out.record;
     switch (out.status) {
       case planner::PipelineStatus::kCancelled:
-        plan.certificate = {};
         finish(PlanOutcome::kCancelled, "cancelled after " + std::to_string(out.wall_time) + " s",
-               std::move(plan), best, false);
+               std::move(record), best, false);
         return;
       case planner::PipelineStatus::kNoPlan:
         finish(PlanOutcome::kNoPath, "the planner produced no path", {}, best, false);
         return;
       case planner::PipelineStatus::kApproximate:
-        note += plan::verdictText(plan.certificate);
+        note += plan::verdictText(record.certificate);
         finish(PlanOutcome::kApproximate,
                "time limit: closest approach " + std::to_string(best) + " tolerance units; " + note,
-               std::move(plan), best, request.accept_approximate);
+               std::move(record), best, request.accept_approximate);
         return;
       case planner::PipelineStatus::kNotCertified:
-        note += plan::verdictText(plan.certificate);
-        finish(PlanOutcome::kNotCertified, std::move(note), std::move(plan), best,
+        note += plan::verdictText(record.certificate);
+        finish(PlanOutcome::kNotCertified, std::move(note), std::move(record), best,
                request.accept_uncertified);
         return;
       case planner::PipelineStatus::kCertified:
-        note += plan::verdictText(plan.certificate);
+        note += plan::verdictText(record.certificate);
         finish(chosen->refined ? PlanOutcome::kOptimized : PlanOutcome::kExact, std::move(note),
-               std::move(plan), best, true);
+               std::move(record), best, true);
         return;
     }
   } catch (const InputError& e) {
@@ -191,7 +188,7 @@ void ReorientationController::Impl::run(ReorientationRequest request) {
   }
 }
 
-bool ReorientationController::load(const plan::Plan& plan, std::string* why,
+bool ReorientationController::load(const plan::PlanRecord& record, std::string* why,
                                    bool accept_uncertified) {
   auto refuse = [&](std::string text) {
     if (why != nullptr) *why = std::move(text);
@@ -201,11 +198,13 @@ bool ReorientationController::load(const plan::Plan& plan, std::string* why,
   if (impl_->status.load() == ControllerStatus::kPlanning)
     return refuse("a request is planning: cancel() it and wait() first");
   if (impl_->worker.joinable()) impl_->worker.join();  // finished: returns at once
+  const plan::Plan& plan = record.plan;
+  const plan::Certificate& certificate = record.certificate;
   const std::string mismatch = plan::planCellMismatch(impl_->model, plan);
   if (!mismatch.empty()) return refuse(mismatch);
-  if (!accept_uncertified && !plan.certificate.certified)
-    return refuse(plan.certificate.ran
-                      ? "the plan is not certified (" + plan::verdictText(plan.certificate) + ")"
+  if (!accept_uncertified && !certificate.certified)
+    return refuse(certificate.ran
+                      ? "the plan is not certified (" + plan::verdictText(certificate) + ")"
                       : "the plan carries no certificate");
   std::unique_ptr<const PublishedPlan> published;
   try {
@@ -217,10 +216,10 @@ bool ReorientationController::load(const plan::Plan& plan, std::string* why,
   const std::uint64_t id = impl_->next_id++;
   impl_->slots.publish(std::move(published));
   impl_->result.outcome = PlanOutcome::kLoaded;
-  impl_->result.message = plan.certificate.ran
-                              ? "loaded; its certificate: " + plan::verdictText(plan.certificate)
+  impl_->result.message = certificate.ran
+                              ? "loaded; its certificate: " + plan::verdictText(certificate)
                               : "loaded; the plan carries no certificate";
-  impl_->result.plan = plan;
+  impl_->result.record = record;
   impl_->result.best_distance = 0.0;
   impl_->result.plan_id = id;
   impl_->outcome.store(PlanOutcome::kLoaded);
@@ -231,14 +230,14 @@ bool ReorientationController::load(const plan::Plan& plan, std::string* why,
 
 bool ReorientationController::loadFile(const std::string& path, std::string* why,
                                        bool accept_uncertified) {
-  plan::Plan plan;
+  plan::PlanRecord record;
   try {
-    plan = plan::readPlanJson(path);
+    record = plan::readPlanJson(path);
   } catch (const InputError& e) {
     if (why != nullptr) *why = e.what();
     return false;
   }
-  return load(plan, why, accept_uncertified);
+  return load(record, why, accept_uncertified);
 }
 
 ReorientationController::ReorientationController(const std::string& cell_file,

@@ -45,23 +45,24 @@ int main(int argc, char** argv) {
                 result.message.empty() ? "" : ": ", result.message.c_str());
     if (ctl.status() != rbsf::controller::ControllerStatus::kReady) return 1;
     rbsf::ReferenceSample ref;
-    const int m = static_cast<int>(result.plan.q0.size()) - rbsf::layout::configDim(0);
+    const int m = static_cast<int>(result.record.plan.q0.size()) - rbsf::layout::configDim(0);
     rbsf::VecU joints(rbsf::layout::controlDim(m)), tau;
     double worst = 0.0;
-    for (const rbsf::plan::PlanSample& s : result.plan.samples) {
+    for (const rbsf::plan::PlanSample& s : result.record.plan.samples) {
       if (!ctl.sample(s.t, ref)) return 1;
       worst = std::max(worst, (ref.q - s.q).cwiseAbs().maxCoeff());
       for (int j = 0; j < joints.size(); ++j) joints[j] = s.q[rbsf::layout::inputToConfig(j)];
       if (!ctl.track(s.t, joints, tau) || !tau.allFinite()) return 1;
     }
     std::printf("rbsf_consumer: certificate %s\n",
-                rbsf::plan::verdictText(result.plan.certificate).c_str());
-    const auto& last = result.plan.samples.back();
+                rbsf::plan::verdictText(result.record.certificate).c_str());
+    const auto& last = result.record.plan.samples.back();
     std::printf(
         "rbsf_consumer: %zu segments, %.3f s, phases %s, final phi %.4f rad (goal "
         "%.4f), largest |q_ref - q| at the knots %.1e\n",
-        result.plan.segments.size(), result.plan.duration(), result.plan.phaseSequence().c_str(),
-        last.q[rbsf::layout::kPhi], request.problem.goal.phi, worst);
+        result.record.plan.segments.size(), result.record.plan.duration(),
+        result.record.plan.phaseSequence().c_str(), last.q[rbsf::layout::kPhi],
+        request.problem.goal.phi, worst);
     return worst <= 1e-9 ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rbsf_consumer: %s\n", e.what());

@@ -10,7 +10,7 @@
 #include <rbsf/dynamics/cell.h>
 #include <rbsf/dynamics/model.h>
 #include <rbsf/plan/certificate.h>
-#include <rbsf/plan/plan.h>
+#include <rbsf/plan/plan_file.h>
 #include <rbsf/plan/plan_fit.h>
 
 int main(int argc, char** argv) {
@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   }
   try {
     const rbsf::RbsfModel model(rbsf::loadCell(argv[1]));
-    const rbsf::plan::Plan plan = rbsf::plan::readPlanJson(argv[2]);
+    const rbsf::plan::Plan plan = rbsf::plan::readPlanJson(argv[2]).plan;
     const std::string mismatch = rbsf::plan::planCellMismatch(model, plan);
     if (!mismatch.empty()) {
       std::fprintf(stderr, "rbsf_plan_client: %s\n", mismatch.c_str());
@@ -29,11 +29,11 @@ int main(int argc, char** argv) {
     std::vector<rbsf::TrajectorySample> trace;
     const rbsf::plan::TrialOutcome o =
         rbsf::plan::traceTrial(model, plan, rbsf::plan::CertificateSettings{}, -1, trace);
-    std::printf("rbsf_plan_client: nominal trial %s over %zu steps: ends %.2g m and %.2g deg "
-                "from the goal%s%s\n",
-                o.success ? "succeeds" : "fails", trace.size(), o.position_error,
-                o.angle_error * 180.0 / 3.141592653589793, o.success ? "" : ": ",
-                o.failure.c_str());
+    std::printf(
+        "rbsf_plan_client: nominal trial %s over %zu steps: ends %.2g m and %.2g deg "
+        "from the goal%s%s\n",
+        o.success ? "succeeds" : "fails", trace.size(), o.position_error,
+        o.angle_error * 180.0 / 3.141592653589793, o.success ? "" : ": ", o.failure.c_str());
     return o.success ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rbsf_plan_client: %s\n", e.what());

@@ -97,13 +97,13 @@ TEST(ReorientationController, PlanCompletesAndSamplingReturnsItsKnots) {
   c.wait();
   ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
   const RequestResult result = c.result();
-  const plan::Plan& plan = result.plan;
+  const plan::Plan& plan = result.record.plan;
+  const plan::Certificate& certificate = result.record.certificate;
   ASSERT_EQ(plan.status, plan::PlanStatus::kExact);
   // Published with its certificate; the outcome says whether it earned it.
-  ASSERT_TRUE(plan.certificate.ran);
-  EXPECT_EQ(plan.certificate.trials, 4);
-  EXPECT_EQ(c.outcome(),
-            plan.certificate.certified ? PlanOutcome::kExact : PlanOutcome::kNotCertified);
+  ASSERT_TRUE(certificate.ran);
+  EXPECT_EQ(certificate.trials, 4);
+  EXPECT_EQ(c.outcome(), certificate.certified ? PlanOutcome::kExact : PlanOutcome::kNotCertified);
   EXPECT_NE(result.message.find("certified"), std::string::npos) << result.message;
   EXPECT_EQ(result.plan_id, 1u);
   EXPECT_EQ(c.planId(), 1u);
@@ -139,7 +139,7 @@ TEST(ReorientationController, SamplingDuringPlanningReturnsThePreviousPlanAndCan
   ASSERT_TRUE(c.plan(smallRequest()));
   c.wait();
   ASSERT_EQ(c.status(), ControllerStatus::kReady);
-  const plan::Plan first = c.result().plan;
+  const plan::Plan first = c.result().record.plan;
   const ReferenceTrajectory expected = plan::makeReference(first);
 
   // A request that cannot finish; its progress callback cancels it after one report.
@@ -175,7 +175,7 @@ TEST(ReorientationController, SamplingDuringPlanningReturnsThePreviousPlanAndCan
   EXPECT_GT(elapsed_at_report.load(), 0.5);  // reports come about once per second
   // Stopped by the cancel, long before its 300 s time limit.
   const RequestResult cancelled = c.result();
-  EXPECT_LT(cancelled.plan.planning_time, 0.5 * endless.planner.time_limit);
+  EXPECT_LT(cancelled.record.plan.planning_time, 0.5 * endless.planner.time_limit);
   EXPECT_EQ(cancelled.plan_id, 0u);
   EXPECT_EQ(c.planId(), 1u);  // the first plan stays published
   ASSERT_TRUE(c.sample(0.3, got, &id));
@@ -186,7 +186,7 @@ TEST(ReorientationController, SamplingDuringPlanningReturnsThePreviousPlanAndCan
   c.wait();
   ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
   EXPECT_EQ(c.planId(), 2u);
-  const plan::Plan second = c.result().plan;
+  const plan::Plan second = c.result().record.plan;
   const plan::PlanSample& last = second.samples.back();
   ASSERT_TRUE(c.sample(last.t, got, &id));
   EXPECT_EQ(id, 2u);
@@ -215,17 +215,18 @@ TEST(ReorientationController, AutoPlansWithSupportsFirstAndTracksWithTheJointLaw
   // joint law that plan carries (lawSensing), whatever the cell senses.
   ReorientationController c(kDefaultCell);
   ReorientationRequest r = smallRequest();
-  r.method = planner::PipelineSettings::Method::kAuto;
+  r.method = planner::PipelineMethod::kAuto;
   r.accept_uncertified = false;
   ASSERT_TRUE(c.plan(r));
   c.wait();
   ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
   EXPECT_EQ(c.outcome(), PlanOutcome::kExact);
-  const plan::Plan plan = c.result().plan;
+  const plan::PlanRecord record = c.result().record;
+  const plan::Plan& plan = record.plan;
   EXPECT_EQ(plan.planner, "support");
   EXPECT_TRUE(plan.joint_feedback);
-  EXPECT_TRUE(plan.certificate.certified);
-  EXPECT_EQ(plan.certificate.law, "joint feedback");
+  EXPECT_TRUE(record.certificate.certified);
+  EXPECT_EQ(record.certificate.law, "joint feedback");
   expectTrackRunsThePlansLaw(c, plan, 1u, 1.0);
 }
 

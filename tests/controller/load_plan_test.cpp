@@ -28,7 +28,7 @@ TEST(LoadPlan, TheCellsSensingInsteadOfThePlansDoesNotHoldASupportPlansPart) {
   // The former recipe built the law on the cell's sensing: on this cell, which senses the
   // part, the part-feedback law, fed exact poses every millisecond.
   const RbsfModel model(loadCell(kDefaultCell));
-  const plan::Plan plan = plan::readPlanJson(planFile());
+  const plan::Plan plan = plan::readPlanJson(planFile()).plan;
   ASSERT_TRUE(model.cell().sensing.part_pose.present);
   const FeedbackSchedule wrong(model, plan::makeReference(plan), model.cell().sensing,
                                plan.simulator);
@@ -52,13 +52,14 @@ TEST(LoadPlan, TheCellsSensingInsteadOfThePlansDoesNotHoldASupportPlansPart) {
 }
 
 TEST(LoadPlan, APlanForAnotherCellIsRefusedNamingWhatDiffers) {
-  const plan::Plan plan = plan::readPlanJson(planFile());
+  const plan::PlanRecord record = plan::readPlanJson(planFile());
+  const plan::Plan& plan = record.plan;
   ASSERT_TRUE(plan.cell.recorded);
   const Cell base = loadCell(kDefaultCell);
   auto refusal = [&](Cell cell) {
     ReorientationController c(std::move(cell));
     std::string why;
-    EXPECT_FALSE(c.load(plan, &why));
+    EXPECT_FALSE(c.load(record, &why));
     EXPECT_EQ(c.status(), ControllerStatus::kIdle);
     EXPECT_EQ(c.planId(), 0u);
     return why;
@@ -74,8 +75,8 @@ TEST(LoadPlan, APlanForAnotherCellIsRefusedNamingWhatDiffers) {
   four.fingers.back().r += 0.1;
   EXPECT_NE(refusal(four).find("3 fingers in the plan, 4 in this cell"), std::string::npos);
   // Without the record, the tips at the start still tell another part's shape.
-  plan::Plan unrecorded = plan;
-  unrecorded.cell = plan::PlanCell{};
+  plan::PlanRecord unrecorded = record;
+  unrecorded.plan.cell = plan::PlanCell{};
   Cell other_shape = loadCell(std::string(RBSF_SOURCE_DIR) + "/cells/circle.yaml");
   other_shape.fingers = base.fingers;
   other_shape.object.mass = base.object.mass;
@@ -84,7 +85,7 @@ TEST(LoadPlan, APlanForAnotherCellIsRefusedNamingWhatDiffers) {
   EXPECT_FALSE(c.load(unrecorded, &why));
   EXPECT_NE(why.find("m from this cell's part"), std::string::npos) << why;
   // A plan whose certificate failed: refused unless accepted.
-  plan::Plan failed = plan;
+  plan::PlanRecord failed = record;
   failed.certificate.certified = false;
   ReorientationController strict(base);
   EXPECT_FALSE(strict.load(failed, &why));
@@ -95,7 +96,7 @@ TEST(LoadPlan, APlanForAnotherCellIsRefusedNamingWhatDiffers) {
   EXPECT_FALSE(why.empty());
   // And the plan's own cell takes it.
   ReorientationController same(base);
-  EXPECT_TRUE(same.load(plan, &why)) << why;
+  EXPECT_TRUE(same.load(record, &why)) << why;
 }
 
 }  // namespace

@@ -142,7 +142,7 @@ TEST(ExecutionRecipe, ThePageShowsThisCode) {
 
 TEST(ExecutionRecipe, RunsAPlanFileAsTheCertificatesTrialWithoutDraws) {
   const RbsfModel model(loadCell(kDefaultCell));
-  const plan::Plan plan = plan::readPlanJson(planFile());
+  const plan::Plan plan = plan::readPlanJson(planFile()).plan;
   std::vector<TrajectorySample> trace;
   const plan::TrialOutcome nominal =
       plan::traceTrial(model, plan, plan::CertificateSettings{}, -1, trace);
@@ -163,15 +163,15 @@ TEST(ExecutionRecipe, RunsAPartFeedbackPlanAsItsTrialStepForStep) {
   // stops there; until then the recipe's run is the trial's, step for step. The plan is
   // marked certified so that loadFile takes it: this test is about the loop, not the verdict.
   const RbsfModel& model = trajopt::test::defaultModel();
-  plan::Plan plan = trajopt::test::shortPlan();
+  const plan::Plan plan = trajopt::test::shortPlan();
   ASSERT_FALSE(plan.joint_feedback);
   plan::CertificateSettings one;
   one.trials = 1;
-  plan.certificate = plan::certify(model, plan, one);
-  plan.certificate.certified = true;
+  plan::PlanRecord record{plan, {}, plan::certify(model, plan, one)};
+  record.certificate.certified = true;
   const std::string file =
       ::testing::TempDir() + "recipe_kinodynamic_" + std::to_string(getpid()) + ".json";
-  plan::writePlanJson(plan, file);
+  plan::writePlanJson(record, file);
   std::vector<TrajectorySample> trace;
   plan::traceTrial(model, plan, plan::CertificateSettings{}, -1, trace);
   ASSERT_GT(trace.size(), 100u);
@@ -186,7 +186,7 @@ TEST(ExecutionRecipe, RunsAPartFeedbackPlanAsItsTrialStepForStep) {
 
 TEST(ExecutionRecipe, StopsAtLoadFileForAnotherCellsPlan) {
   const RbsfModel model(loadCell(kDefaultCell));
-  const plan::Plan plan = plan::readPlanJson(planFile());
+  const plan::Plan plan = plan::readPlanJson(planFile()).plan;
   SimulatedCell cell(model, plan);
   // The heavy cell's part weighs more: the plan is not for it.
   EXPECT_EQ(runPlanFile(kSourceDir + "/cells/heavy.yaml", planFile(), cell, 0.0), 2);

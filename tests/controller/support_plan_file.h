@@ -21,7 +21,7 @@ inline const std::string& planFile() {
     ReorientationRequest r;
     r.problem.start = {0.1, 0.40, 0.0};
     r.problem.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
-    r.method = planner::PipelineSettings::Method::kAuto;
+    r.method = planner::PipelineMethod::kAuto;
     r.planner.time_limit = 3600.0;
     r.planner.max_propagations = 200000;
     r.certificate.trials = 4;
@@ -31,7 +31,7 @@ inline const std::string& planFile() {
     if (c.status() != ControllerStatus::kReady) throw std::runtime_error(c.result().message);
     const std::string file =
         ::testing::TempDir() + "support_plan_" + std::to_string(getpid()) + ".json";
-    plan::writePlanJson(c.result().plan, file);
+    plan::writePlanJson(c.result().record, file);
     return file;
   }();
   return path;

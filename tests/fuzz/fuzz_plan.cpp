@@ -7,11 +7,11 @@
 #include <string>
 
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/plan/plan.h"
+#include "rbsf/plan/plan_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  rbsf::plan::Plan plan;
+  rbsf::plan::PlanRecord plan;
   try {
     plan = rbsf::plan::parsePlanJson(text, "<fuzz>");
   } catch (const rbsf::InputError&) {

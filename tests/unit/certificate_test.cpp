@@ -18,6 +18,7 @@
 #include "rbsf/dynamics/state_layout.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/confidence.h"
+#include "rbsf/plan/plan_file.h"
 
 namespace rbsf::plan {
 namespace {
@@ -139,11 +140,11 @@ TEST(Certificate, APartSlidingOnTwoFrictionlessTipsIsHeldOnlyWithPartFeedback) {
 TEST(Certificate, TravelsInPlanFilesAndIsRefusedWhenMalformed) {
   CertificateSettings s;
   s.trials = 3;
-  Plan plan = twoTipsPlan();
-  plan.certificate = certify(twoTipsModel(), plan, s);
+  PlanRecord plan{twoTipsPlan(), {}, {}};
+  plan.certificate = certify(twoTipsModel(), plan.plan, s);
   const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_cert_plan.json";
   writePlanJson(plan, path);
-  const Plan back = readPlanJson(path);
+  const PlanRecord back = readPlanJson(path);
   ASSERT_TRUE(back.certificate.ran);
   EXPECT_EQ(certificateJsonText(back.certificate), certificateJsonText(plan.certificate));
   EXPECT_EQ(back.certificate.sensing.part_pose.rate, plan.certificate.sensing.part_pose.rate);
@@ -509,13 +510,13 @@ TEST(CertificateReport, HowASequentialCertificateStopped) {
 TEST(Certificate, TheBoundAndTheTrialRuleTravelInPlanFilesAndAreChecked) {
   CertificateSettings s;
   s.trials = 3;
-  Plan plan = twoTipsPlan();
-  plan.certificate = certify(twoTipsModel(), plan, s);
+  PlanRecord plan{twoTipsPlan(), {}, {}};
+  plan.certificate = certify(twoTipsModel(), plan.plan, s);
   plan.certificate.sequential = true;  // as a sequential certificate would say
   plan.certificate.batch = 2;
   plan.certificate.max_trials = 8;
   const std::string text = planJsonText(plan);
-  const Plan back = parsePlanJson(text, "plan.json");
+  const PlanRecord back = parsePlanJson(text, "plan.json");
   EXPECT_EQ(back.certificate.lower_bound, plan.certificate.lower_bound);
   EXPECT_EQ(back.certificate.confidence, 0.95);
   EXPECT_TRUE(back.certificate.sequential);

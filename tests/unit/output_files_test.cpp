@@ -13,7 +13,7 @@
 
 #include "rbsf/dynamics/atomic_file.h"
 #include "rbsf/dynamics/errors.h"
-#include "rbsf/plan/plan.h"
+#include "rbsf/plan/plan_file.h"
 #include "rbsf/tools/interrupt.h"
 
 namespace rbsf::tools {
@@ -108,26 +108,26 @@ plan::Plan tinyPlan() {
 
 TEST(PlanFile, ReproducibleTextLeavesPlanningTimeOutAndStillParses) {
   const plan::Plan p = tinyPlan();
-  const std::string full = plan::planJsonText(p);
+  const std::string full = plan::planJsonText({p, {}, {}});
   EXPECT_NE(full.find("\"planning_time\""), std::string::npos);
   plan::PlanFileOptions o;
   o.wall_clock = false;
-  const std::string repro = plan::planJsonText(p, o);
+  const std::string repro = plan::planJsonText({p, {}, {}}, o);
   EXPECT_EQ(repro.find("planning_time"), std::string::npos);
-  const plan::Plan back = plan::parsePlanJson(repro, "<text>");
+  const plan::Plan back = plan::parsePlanJson(repro, "<text>").plan;
   EXPECT_EQ(back.planning_time, 0.0);
   EXPECT_EQ(back.seed, 3u);
   EXPECT_TRUE(back.samples.front().f_n == p.samples.front().f_n);
-  EXPECT_EQ(plan::parsePlanJson(full, "<text>").planning_time, 1.25);
+  EXPECT_EQ(plan::parsePlanJson(full, "<text>").plan.planning_time, 1.25);
   // Text and file readers agree.
-  EXPECT_EQ(plan::planJsonText(back, o), repro);
+  EXPECT_EQ(plan::planJsonText({back, {}, {}}, o), repro);
 }
 
 TEST(PlanFile, OutOfRangeIntegersAndNonFiniteNumbersAreInputErrors) {
   // Found with tests/fuzz/fuzz_plan.cpp under UBSan: a float or out-of-range value was cast to
   // int / uint32 / uint64 (undefined behaviour), a negative seed wrapped around; a zero step
   // count or time step was accepted; an over-long array overran a fixed-capacity vector.
-  const nlohmann::json good = nlohmann::json::parse(plan::planJsonText(tinyPlan()));
+  const nlohmann::json good = nlohmann::json::parse(plan::planJsonText({tinyPlan(), {}, {}}));
   ASSERT_NO_THROW(plan::parsePlanJson(good.dump(), "<good>"));
   struct Case {
     std::string edit, needle;

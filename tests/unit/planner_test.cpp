@@ -13,6 +13,7 @@
 #include "rbsf/dynamics/cell.h"
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/state_layout.h"
+#include "rbsf/plan/plan_file.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/planner/goal.h"
 #include "rbsf/planner/planner_setup.h"
@@ -190,8 +191,8 @@ TEST_F(PlannerTest, PlanFileRoundTrips) {
   Plan plan;
   ASSERT_TRUE(planner.solve(smallProblem(), plan));
   const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_plan.json";
-  writePlanJson(plan, path);
-  const Plan back = readPlanJson(path);
+  writePlanJson({plan, {}, {}}, path);
+  const Plan back = readPlanJson(path).plan;
   EXPECT_EQ(back.status, plan.status);
   EXPECT_EQ(back.planner, "KPIECE1");
   EXPECT_EQ(back.seed, 4u);
@@ -224,8 +225,8 @@ TEST_F(PlannerTest, PlanFileRoundTrips) {
   other.simulator.contact_tolerance = 2e-6;
   other.simulator.curvature_terms = false;
   other.simulator.max_mode_iterations = 5;
-  writePlanJson(other, path);
-  const Plan other_back = readPlanJson(path);
+  writePlanJson({other, {}, {}}, path);
+  const Plan other_back = readPlanJson(path).plan;
   EXPECT_EQ(other_back.simulator.contact_tolerance, 2e-6);
   EXPECT_FALSE(other_back.simulator.curvature_terms);
   EXPECT_EQ(other_back.simulator.max_mode_iterations, 5);
@@ -233,8 +234,8 @@ TEST_F(PlannerTest, PlanFileRoundTrips) {
   EXPECT_FALSE(back.joint_feedback);
   EXPECT_TRUE(lawSensing(model.cell().sensing, back).part_pose.present);
   other.joint_feedback = true;
-  writePlanJson(other, path);
-  const Plan joints_back = readPlanJson(path);
+  writePlanJson({other, {}, {}}, path);
+  const Plan joints_back = readPlanJson(path).plan;
   EXPECT_TRUE(joints_back.joint_feedback);
   EXPECT_FALSE(lawSensing(model.cell().sensing, joints_back).part_pose.present);
   // The loaded segments re-simulate to the same samples.
@@ -258,7 +259,7 @@ TEST_F(PlannerTest, MalformedPlanFileIsRefused) {
   Plan plan;
   ASSERT_TRUE(planner.solve(smallProblem(), plan));
   plan.simulator.slip_tolerance = -1.0;
-  writePlanJson(plan, path);
+  writePlanJson({plan, {}, {}}, path);
   try {
     readPlanJson(path);
     FAIL() << "accepted";

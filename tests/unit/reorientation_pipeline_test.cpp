@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <variant>
 #include <vector>
 
 #include "rbsf/dynamics/cell.h"
@@ -35,7 +36,7 @@ Problem turn(double degrees) {
 
 /// Few trials: the tests are about the composition, not the rates. 4 of 4 bound the rate at
 /// 0.47 (95 % confidence), so a plan that passes them certifies at 0.4.
-PipelineSettings fewTrials(PipelineSettings::Method method) {
+PipelineSettings fewTrials(PipelineMethod method) {
   PipelineSettings s;
   s.method = method;
   s.planner.time_limit = 60.0;
@@ -59,35 +60,38 @@ void expectHandledNotThrown(const Plan& plan, const MotionLimits& limits) {
 
 TEST(ReorientationPipeline, AutoTriesSupportsFirstAndACertifiedPlanEndsTheRun) {
   const RbsfModel& model = defaultModel();
-  PipelineSettings s = fewTrials(PipelineSettings::Method::kAuto);
+  const PipelineSettings s = fewTrials(PipelineMethod::kAuto);
   std::vector<PipelineStage> stages;
-  s.on_stage = [&](PipelineStage st, const std::string&, std::uint32_t) { stages.push_back(st); };
-  int refinements = 0;
-  std::vector<PlanMargins> margins;
-  s.refine = [&](const Plan& p, const PlanMargins& m, const CertificateSettings& c, bool&,
-                 std::string&) {
-    margins.push_back(m);
-    Plan kept = p;
-    kept.certificate = certify(model, p, c);
-    ++refinements;
-    return kept;
+  int found = 0, judged = 0, refined = 0;
+  Certificate judged_certificate;
+  RunContext context;
+  context.on_event = [&](const PipelineEvent& e) {
+    if (const auto* st = std::get_if<StageStarted>(&e)) stages.push_back(st->stage);
+    if (std::holds_alternative<PlanFound>(e)) ++found;
+    if (std::holds_alternative<PlanRefined>(e)) ++refined;
+    if (const auto* j = std::get_if<AttemptJudged>(&e)) {
+      EXPECT_EQ(found, 1) << "a plan is judged after it is found";
+      judged_certificate = j->record.certificate;
+      ++judged;
+    }
   };
-  const PipelineOutcome out = ReorientationPipeline(model, s).run(turn(-15));
-  ASSERT_EQ(out.status, PipelineStatus::kCertified) << verdictText(out.plan.certificate);
+  const PipelineOutcome out = ReorientationPipeline(model, s).run(turn(-15), context);
+  ASSERT_EQ(out.status, PipelineStatus::kCertified) << verdictText(out.record.certificate);
   ASSERT_EQ(out.attempts.size(), 1u);
   EXPECT_EQ(out.chosen, 0);
-  EXPECT_EQ(out.attempts[0].method, "support");
-  EXPECT_EQ(out.plan.planner, "support");
-  // The support plan goes to the refinement with the margins it was planned with.
-  ASSERT_EQ(refinements, 1);
-  EXPECT_TRUE(margins[0].support);
-  EXPECT_EQ(margins[0].friction_use, out.attempts[0].friction_use);
-  EXPECT_EQ(margins[0].normal_margin, s.support.search.support.balance.normal_margin);
-  EXPECT_EQ(stages,
-            (std::vector<PipelineStage>{PipelineStage::kSupportSearch, PipelineStage::kRefining}));
-  EXPECT_TRUE(out.plan.certificate.certified);
+  EXPECT_EQ(out.attempts[0].search, SearchKind::kSupport);
+  EXPECT_EQ(out.attempts[0].method(), "support");
+  EXPECT_EQ(out.record.plan.planner, "support");
+  // Not optimised: certified as found, the certificate the event carried is the result's.
+  EXPECT_EQ(stages, (std::vector<PipelineStage>{PipelineStage::kSupportSearch,
+                                                PipelineStage::kCertifying}));
+  EXPECT_EQ(refined, 0);
+  EXPECT_EQ(judged, 1);
+  EXPECT_EQ(certificateJsonText(judged_certificate), certificateJsonText(out.record.certificate));
+  EXPECT_FALSE(out.record.optimization.ran);
+  EXPECT_TRUE(out.record.certificate.certified);
   EXPECT_FALSE(std::isfinite(out.best_distance));  // no kinodynamic search ran
-  expectHandledNotThrown(out.plan, model.cell().motion_limits);
+  expectHandledNotThrown(out.record.plan, model.cell().motion_limits);
 }
 
 TEST(ReorientationPipeline, OnABlindCellTheWrittenPlanIsHeldByTheJoints) {
@@ -95,63 +99,58 @@ TEST(ReorientationPipeline, OnABlindCellTheWrittenPlanIsHeldByTheJoints) {
   blind.sensing.part_pose.present = false;
   const RbsfModel model(blind);
   const PipelineOutcome out =
-      ReorientationPipeline(model, fewTrials(PipelineSettings::Method::kAuto)).run(turn(-30));
-  ASSERT_EQ(out.status, PipelineStatus::kCertified) << verdictText(out.plan.certificate);
-  EXPECT_EQ(out.plan.certificate.law, "joint feedback");
+      ReorientationPipeline(model, fewTrials(PipelineMethod::kAuto)).run(turn(-30));
+  ASSERT_EQ(out.status, PipelineStatus::kCertified) << verdictText(out.record.certificate);
+  EXPECT_EQ(out.record.certificate.law, "joint feedback");
   // Measured again from the plan: at least 3 independent rows but for short transitions.
-  const PlanHolding h = measureHolding(model, out.plan, HoldingSettings{});
+  const PlanHolding h = measureHolding(model, out.record.plan, HoldingSettings{});
   ASSERT_TRUE(h.measured);
   EXPECT_LE(h.longest_free, HoldingSettings{}.max_free_time);
-  expectHandledNotThrown(out.plan, model.cell().motion_limits);
+  expectHandledNotThrown(out.record.plan, model.cell().motion_limits);
 }
 
 TEST(ReorientationPipeline, UncertifiedPlansGoOnSeedAfterSeedAndTheBestIsKept) {
   // Kinodynamic plans of the default cell throw the part (beyond its motion limits): none
-  // certifies, so both attempts run, with consecutive seeds, each refined once.
+  // certifies, so both attempts run, with consecutive seeds, each judged once.
   const RbsfModel& model = defaultModel();
-  PipelineSettings s = fewTrials(PipelineSettings::Method::kKinodynamic);
+  PipelineSettings s = fewTrials(PipelineMethod::kKinodynamic);
   s.planner.seed = 3;
   s.max_attempts = 2;
-  std::vector<std::uint32_t> refined_seeds;
-  s.refine = [&](const Plan& p, const PlanMargins& m, const CertificateSettings& c, bool& refined,
-                 std::string& note) {
-    EXPECT_FALSE(m.support);
-    refined_seeds.push_back(p.seed);
-    EXPECT_EQ(c.trial.position_tolerance, s.planner.position_tolerance);
-    EXPECT_EQ(c.trials, 4);
-    refined = false;
-    note = "kept as found";
-    Plan q = p;
-    q.certificate = certify(model, q, c);
-    return q;
+  std::vector<std::uint32_t> judged_seeds;
+  RunContext context;
+  context.on_event = [&](const PipelineEvent& e) {
+    if (const auto* j = std::get_if<AttemptJudged>(&e)) {
+      judged_seeds.push_back(j->attempt.seed);
+      EXPECT_EQ(j->record.plan.seed, j->attempt.seed);
+      EXPECT_EQ(j->record.certificate.trials, 4);
+    }
   };
-  const PipelineOutcome out = ReorientationPipeline(model, s).run(turn(-15));
+  const PipelineOutcome out = ReorientationPipeline(model, s).run(turn(-15), context);
   ASSERT_EQ(out.attempts.size(), 2u);
   EXPECT_EQ(out.attempts[0].seed, 3u);
   EXPECT_EQ(out.attempts[1].seed, 4u);
   EXPECT_EQ(out.status, PipelineStatus::kNotCertified);
-  EXPECT_FALSE(out.plan.certificate.certified);
-  EXPECT_FALSE(out.plan.certificate.motion.ok());
-  for (const PipelineAttempt& a : out.attempts) {
-    ASSERT_TRUE(a.exact);
-    EXPECT_EQ(a.note, "kept as found");
-  }
-  EXPECT_EQ(refined_seeds, (std::vector<std::uint32_t>{3, 4}));
+  EXPECT_FALSE(out.record.certificate.certified);
+  EXPECT_FALSE(out.record.certificate.motion.ok());
+  for (const PipelineAttempt& a : out.attempts) ASSERT_TRUE(a.exact);
+  EXPECT_EQ(judged_seeds, (std::vector<std::uint32_t>{3, 4}));
   // The kept plan is the chosen attempt's, and no other attempt's certificate is better.
   ASSERT_GE(out.chosen, 0);
-  EXPECT_EQ(out.plan.seed, out.attempts[out.chosen].seed);
+  EXPECT_EQ(out.record.plan.seed, out.attempts[out.chosen].seed);
   for (const PipelineAttempt& a : out.attempts)
-    EXPECT_FALSE(betterCertificate(a.certificate, out.plan.certificate));
+    EXPECT_FALSE(betterCertificate(a.certificate, out.record.certificate));
   EXPECT_TRUE(std::isfinite(out.best_distance));
 }
 
 TEST(ReorientationPipeline, ACancelBeforeTheRunStopsItWithNothingCertified) {
   std::atomic<bool> cancel{true};
-  PipelineSettings s = fewTrials(PipelineSettings::Method::kAuto);
-  s.planner.cancel = &cancel;
-  const PipelineOutcome out = ReorientationPipeline(defaultModel(), s).run(turn(-15));
+  RunContext context;
+  context.cancel = &cancel;
+  const PipelineOutcome out =
+      ReorientationPipeline(defaultModel(), fewTrials(PipelineMethod::kAuto))
+          .run(turn(-15), context);
   EXPECT_EQ(out.status, PipelineStatus::kCancelled);
-  EXPECT_FALSE(out.plan.certificate.ran);
+  EXPECT_FALSE(out.record.certificate.ran);
 }
 
 TEST(ReorientationPipeline, BadSettingsAndProblemsAreInputErrors) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "rbsf/dynamics/errors.h"
+#include "rbsf/planner/refine_and_certify.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 #include "rbsf/trajopt/plan_refinement.h"
 #include "rbsf/trajopt/trajectory_problem.h"
@@ -39,10 +40,10 @@ class TrajoptSolve : public ::testing::Test {
 OptimizedPlan* TrajoptSolve::result_ = nullptr;
 
 TEST_F(TrajoptSolve, ConvergesAndLowersTheEffort) {
-  const plan::OptimizationSummary& o = result_->plan.optimization;
-  ASSERT_TRUE(result_->success) << o.status << ": " << o.message;
+  const plan::OptimizationSummary& o = result_->summary;
+  ASSERT_TRUE(result_->success) << toString(o.status) << ": " << o.message;
   EXPECT_TRUE(o.ran);
-  EXPECT_TRUE(o.status == "Solve_Succeeded" || o.status == "Solved_To_Acceptable_Level");
+  EXPECT_TRUE(plan::converged(o.status)) << toString(o.status);
   EXPECT_GT(o.iterations, 0);
   EXPECT_TRUE(o.message.empty());
   EXPECT_NEAR(o.cost_before, planEffort(test::defaultModel(), test::shortPlan()), 1e-12);
@@ -174,9 +175,9 @@ TEST(TrajoptFailure, IterationLimitKeepsTheInputPlan) {
   const PlanOptimizer opt(test::defaultModel(), s);
   const OptimizedPlan out = opt.optimize(test::shortPlan());
   EXPECT_FALSE(out.success);
-  const plan::OptimizationSummary& o = out.plan.optimization;
+  const plan::OptimizationSummary& o = out.summary;
   EXPECT_TRUE(o.ran);
-  EXPECT_EQ(o.status, "Maximum_Iterations_Exceeded");
+  EXPECT_EQ(o.status, plan::SolverStatus::kMaximumIterationsExceeded);
   EXPECT_NE(o.message.find("planner's plan is kept"), std::string::npos) << o.message;
   EXPECT_EQ(out.plan.segments.size(), test::shortPlan().segments.size());
   EXPECT_EQ(out.plan.samples.size(), test::shortPlan().samples.size());
@@ -196,8 +197,8 @@ TEST(TrajoptOptions, AnIpoptOptFileInTheWorkingDirectoryIsIgnored) {
   const OptimizedPlan out = opt.optimize(test::shortPlan());
   std::filesystem::current_path(cwd);
   std::filesystem::remove_all(dir);
-  EXPECT_TRUE(out.success) << out.plan.optimization.status;
-  EXPECT_GT(out.plan.optimization.iterations, 1);
+  EXPECT_TRUE(out.success) << toString(out.summary.status);
+  EXPECT_GT(out.summary.iterations, 1);
 }
 
 TEST(TrajoptSlipRate, SlidingContactsSlideAtLeastAtTheMinimumRate) {
@@ -207,7 +208,7 @@ TEST(TrajoptSlipRate, SlidingContactsSlideAtLeastAtTheMinimumRate) {
   OptimizerSettings s = testSettings();
   s.min_slip_rate = 0.1;
   const OptimizedPlan out = PlanOptimizer(test::defaultModel(), s).optimize(test::shortPlan());
-  ASSERT_TRUE(out.success) << out.plan.optimization.message;
+  ASSERT_TRUE(out.success) << out.summary.message;
   const TrajectoryProblem p(test::defaultModel(), test::shortPlan(), s);
   const Schedule& sched = p.schedule();
   struct Slide {
@@ -251,51 +252,59 @@ TEST(TrajoptRefinement, AFailedSolveIsRetriedOnceWithAMinimumSlipRate) {
   // is one solve.
   OptimizerSettings s = testSettings();
   s.max_iterations = 1;
-  const PlanOptimizer opt(test::defaultModel(), s);
   const plan::Plan& plan = test::shortPlan();
-  RefineSettings few;
-  few.certificate.trials = 4;
-  const RefineOutcome twice = refinePlan(opt, plan, few);
+  plan::CertificateSettings few;
+  few.trials = 4;
+  const planner::RefinementResult twice =
+      planner::refineAndCertify(PlanRefiner(test::defaultModel(), s), plan, {}, few);
   EXPECT_FALSE(twice.refined);
-  EXPECT_EQ(twice.attempts, 2);
+  EXPECT_EQ(twice.solves, 2);
   EXPECT_NE(twice.reason.find("Maximum_Iterations_Exceeded"), std::string::npos) << twice.reason;
   EXPECT_NE(twice.reason.find("retry with min_slip_rate 0.100000: optimisation failed"),
             std::string::npos)
       << twice.reason;
-  EXPECT_EQ(twice.plan.optimization.message, twice.reason);
-  EXPECT_FALSE(twice.plan.optimization.chosen);
-  EXPECT_EQ(twice.plan.segments.size(), plan.segments.size());  // the planner's plan, kept
-  ASSERT_TRUE(twice.plan.certificate.ran);
-  EXPECT_EQ(twice.plan.certificate.trials, 4);
-  EXPECT_EQ(twice.plan.certificate.successes, twice.planner_certificate.successes);
-  RefineSettings no_retry = few;
+  EXPECT_EQ(twice.record.optimization.message, twice.reason);
+  EXPECT_FALSE(twice.record.optimization.chosen);
+  EXPECT_EQ(twice.record.plan.segments.size(), plan.segments.size());  // the planner's, kept
+  ASSERT_TRUE(twice.record.certificate.ran);
+  EXPECT_EQ(twice.record.certificate.trials, 4);
+  EXPECT_EQ(twice.record.certificate.successes, twice.planner_certificate.successes);
+  RefineSettings no_retry;
   no_retry.retry_min_slip_rate = 0.0;
-  const RefineOutcome once = refinePlan(opt, plan, no_retry);
-  EXPECT_EQ(once.attempts, 1);
+  const planner::RefinementResult once =
+      planner::refineAndCertify(PlanRefiner(test::defaultModel(), s, no_retry), plan, {}, few);
+  EXPECT_EQ(once.solves, 1);
   EXPECT_EQ(once.reason.find("retry"), std::string::npos) << once.reason;
 }
 
 TEST(TrajoptRefinement, TheBetterCertificateIsWritten) {
   // A converged refinement is certified beside the planner's plan, and the plan written
   // carries the certificate of the one chosen: never fewer successes than the other's.
-  const PlanOptimizer opt(test::defaultModel(), testSettings());
   const plan::Plan& plan = test::shortPlan();
-  RefineSettings few;
-  few.certificate.trials = 4;
-  few.retry_min_slip_rate = 0.0;
-  const RefineOutcome r = refinePlan(opt, plan, few);
-  ASSERT_EQ(r.attempts, 1);
-  ASSERT_TRUE(r.plan.certificate.ran);
-  const double refined_rate = r.plan.optimization.refined_success_rate;
-  ASSERT_GE(refined_rate, 0.0) << r.plan.optimization.message;
-  EXPECT_GE(r.plan.certificate.success_rate, r.planner_certificate.success_rate);
-  EXPECT_GE(r.plan.certificate.success_rate, refined_rate);
-  EXPECT_EQ(r.refined, r.plan.optimization.chosen);
+  plan::CertificateSettings few;
+  few.trials = 4;
+  RefineSettings no_retry;
+  no_retry.retry_min_slip_rate = 0.0;
+  const planner::RefinementResult out = planner::refineAndCertify(
+      PlanRefiner(test::defaultModel(), testSettings(), no_retry), plan, {}, few);
+  ASSERT_EQ(out.solves, 1);
+  struct {
+    const plan::Plan& plan;
+    const plan::OptimizationSummary& optimization;
+    const plan::Certificate& certificate;
+  } r_plan{out.record.plan, out.record.optimization, out.record.certificate};
+  const planner::RefinementResult& r = out;
+  ASSERT_TRUE(r_plan.certificate.ran);
+  const double refined_rate = r_plan.optimization.refined_success_rate;
+  ASSERT_GE(refined_rate, 0.0) << r_plan.optimization.message;
+  EXPECT_GE(r_plan.certificate.success_rate, r.planner_certificate.success_rate);
+  EXPECT_GE(r_plan.certificate.success_rate, refined_rate);
+  EXPECT_EQ(r.refined, r_plan.optimization.chosen);
   if (r.refined) {
-    EXPECT_EQ(r.plan.certificate.success_rate, refined_rate);
+    EXPECT_EQ(r_plan.certificate.success_rate, refined_rate);
   } else {
-    EXPECT_EQ(r.plan.segments.size(), plan.segments.size());
-    EXPECT_EQ(r.plan.certificate.successes, r.planner_certificate.successes);
+    EXPECT_EQ(r_plan.plan.segments.size(), plan.segments.size());
+    EXPECT_EQ(r_plan.certificate.successes, r.planner_certificate.successes);
   }
 }
 
@@ -305,8 +314,8 @@ TEST(TrajoptFailure, TooFewKnotsForThePhaseRunsIsReported) {
   const PlanOptimizer opt(test::defaultModel(), s);
   const OptimizedPlan out = opt.optimize(test::shortPlan());
   EXPECT_FALSE(out.success);
-  EXPECT_EQ(out.plan.optimization.status, "Not_Solved");
-  EXPECT_NE(out.plan.optimization.message.find("knots"), std::string::npos);
+  EXPECT_EQ(out.summary.status, plan::SolverStatus::kNotSolved);
+  EXPECT_NE(out.summary.message.find("knots"), std::string::npos);
   EXPECT_EQ(out.plan.segments.size(), test::shortPlan().segments.size());
 }
 
@@ -320,9 +329,8 @@ TEST(TrajoptFailure, InfeasibleGoalIsReportedAndThePlanKept) {
   const PlanOptimizer opt(test::defaultModel(), s);
   const OptimizedPlan out = opt.optimize(far);
   EXPECT_FALSE(out.success);
-  EXPECT_NE(out.plan.optimization.status, "Solve_Succeeded");
-  EXPECT_NE(out.plan.optimization.message.find("did not converge"), std::string::npos)
-      << out.plan.optimization.message;
+  EXPECT_NE(out.summary.status, plan::SolverStatus::kSolveSucceeded);
+  EXPECT_NE(out.summary.message.find("did not converge"), std::string::npos) << out.summary.message;
   EXPECT_EQ(out.plan.segments.size(), far.segments.size());
   EXPECT_TRUE(out.f_t.empty());
 }

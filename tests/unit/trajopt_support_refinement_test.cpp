@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "rbsf/plan/certificate.h"
+#include "rbsf/planner/refine_and_certify.h"
 #include "rbsf/planner/support_planner.h"
 #include "rbsf/trajopt/plan_refinement.h"
 #include "trajopt_support.h"
@@ -55,7 +56,7 @@ TEST(SupportRefinement, StickingForcesStayInTheFrictionUseConeAndItRunsAtLeastAs
   const Planned& in = supportTurn();
   const OptimizerSettings s = supportOptimizerSettings(base(), in.margins);
   const OptimizedPlan out = PlanOptimizer(model, s).optimize(in.plan);
-  ASSERT_TRUE(out.success) << out.plan.optimization.message;
+  ASSERT_TRUE(out.success) << out.summary.message;
   // Every knot's forces against the roles of the interval it starts (the plan's segments
   // are the knot intervals and carry the stated roles).
   const double cone = in.margins.friction_use * model.cell().friction.mu_static;
@@ -78,7 +79,7 @@ TEST(SupportRefinement, StickingForcesStayInTheFrictionUseConeAndItRunsAtLeastAs
   }
   EXPECT_GT(sticking, 50);
   // The effort falls, and on the same draws the refinement runs at least as well.
-  EXPECT_LT(out.plan.optimization.cost_after, 0.8 * out.plan.optimization.cost_before);
+  EXPECT_LT(out.summary.cost_after, 0.8 * out.summary.cost_before);
   const plan::Certificate planned = plan::certify(model, in.plan, fewTrials());
   const plan::Certificate refined = plan::certify(model, out.plan, fewTrials());
   EXPECT_GE(refined.lower_bound, planned.lower_bound)
@@ -99,7 +100,7 @@ TEST(SupportRefinement, WithoutTheMarginsTheSameRefinementDropsThePart) {
   s.tube_position = s.tube_angle = 0.0;
   s.motion_limits = false;
   const OptimizedPlan out = PlanOptimizer(model, s).optimize(in.plan);
-  ASSERT_TRUE(out.success) << out.plan.optimization.message;
+  ASSERT_TRUE(out.success) << out.summary.message;
   std::vector<plan::TrialOutcome> trials;
   const plan::Certificate refined = plan::certify(model, out.plan, fewTrials(), &trials);
   int dropped = 0;
@@ -112,32 +113,30 @@ TEST(SupportRefinement,
      ThePipelinesStepWritesTheRefinementOnlyWhenItsCertificateIsAtLeastThePlanners) {
   const RbsfModel& model = test::defaultModel();
   const Planned& in = supportTurn();
-  RefineSettings rs;
-  rs.certificate = fewTrials();
-  const PlanOptimizer optimizer(model, base());
-  const RefineOutcome out = refinePlan(optimizer, in.plan, rs, in.margins);
-  ASSERT_TRUE(out.plan.certificate.ran);
-  EXPECT_EQ(out.refined, atLeastAsGood(out.plan.certificate, out.planner_certificate));
+  const planner::RefinementResult out =
+      planner::refineAndCertify(PlanRefiner(model, base()), in.plan, in.margins, fewTrials());
+  ASSERT_TRUE(out.record.certificate.ran);
+  EXPECT_EQ(out.refined, planner::atLeastAsGood(out.record.certificate, out.planner_certificate));
   ASSERT_TRUE(out.refined) << out.reason;
-  EXPECT_TRUE(out.plan.optimization.chosen);
-  EXPECT_GE(out.plan.certificate.lower_bound, out.planner_certificate.lower_bound);
-  for (const plan::PlanSegment& seg : out.plan.segments) EXPECT_TRUE(planned(seg.contacts));
+  EXPECT_TRUE(out.record.optimization.chosen);
+  EXPECT_GE(out.record.certificate.lower_bound, out.planner_certificate.lower_bound);
+  for (const plan::PlanSegment& seg : out.record.plan.segments) EXPECT_TRUE(planned(seg.contacts));
 }
 
 TEST(SupportRefinement, AtLeastAsGoodComparesTheVerdictThenTheBound) {
   plan::Certificate a, b;
   a.ran = b.ran = true;
   a.lower_bound = b.lower_bound = 0.9;
-  EXPECT_TRUE(atLeastAsGood(a, b));  // a tie: at least as good
+  EXPECT_TRUE(planner::atLeastAsGood(a, b));  // a tie: at least as good
   b.certified = true;
-  EXPECT_FALSE(atLeastAsGood(a, b));  // the planner's certified, the refinement not
+  EXPECT_FALSE(planner::atLeastAsGood(a, b));  // the planner's certified, the refinement not
   a.certified = true;
   a.lower_bound = 0.9 - 1e-12;
-  EXPECT_FALSE(atLeastAsGood(a, b));  // a lower bound below
+  EXPECT_FALSE(planner::atLeastAsGood(a, b));  // a lower bound below
   a.lower_bound = 0.95;
-  EXPECT_TRUE(atLeastAsGood(a, b));
+  EXPECT_TRUE(planner::atLeastAsGood(a, b));
   a.ran = false;
-  EXPECT_FALSE(atLeastAsGood(a, b));
+  EXPECT_FALSE(planner::atLeastAsGood(a, b));
 }
 
 }  // namespace

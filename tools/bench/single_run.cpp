@@ -13,6 +13,7 @@
 
 #include "rbsf/bench/benchmark_log.h"
 #include "rbsf/dynamics/atomic_file.h"
+#include "rbsf/planner/refine_and_certify.h"
 #include "rbsf/planner/support_ompl_planner.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 #include "rbsf/trajopt/plan_refinement.h"
@@ -28,40 +29,6 @@ std::string num(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
-}
-
-/// Values of the "optimizer status" enum: Ipopt's return statuses as PlanOptimizer names
-/// them, its wall-time stop, and "Not_Solved" (no NLP built).
-const std::vector<std::string>& optimizerStatuses() {
-  static const std::vector<std::string> names = {"Solve_Succeeded",
-                                                 "Solved_To_Acceptable_Level",
-                                                 "Infeasible_Problem_Detected",
-                                                 "Search_Direction_Becomes_Too_Small",
-                                                 "Diverging_Iterates",
-                                                 "User_Requested_Stop",
-                                                 "Feasible_Point_Found",
-                                                 "Maximum_Iterations_Exceeded",
-                                                 "Restoration_Failed",
-                                                 "Error_In_Step_Computation",
-                                                 "Maximum_CpuTime_Exceeded",
-                                                 "Maximum_WallTime_Exceeded",
-                                                 "Not_Enough_Degrees_Of_Freedom",
-                                                 "Invalid_Problem_Definition",
-                                                 "Invalid_Option",
-                                                 "Invalid_Number_Detected",
-                                                 "Unrecoverable_Exception",
-                                                 "NonIpopt_Exception_Thrown",
-                                                 "Insufficient_Memory",
-                                                 "Internal_Error",
-                                                 "Not_Solved",
-                                                 "Unknown_Status"};
-  return names;
-}
-
-std::string optimizerStatusIndex(const std::string& status) {
-  const auto& names = optimizerStatuses();
-  const auto it = std::find(names.begin(), names.end(), status);
-  return std::to_string(it == names.end() ? names.size() - 1 : it - names.begin());
 }
 
 /// Propagations OMPL's PathControl::check() makes on a correct path: each control
@@ -149,14 +116,14 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
     run["path mismatch REAL"] = num(plan.path_mismatch);
     if (!rs.optimize) return;
     // The product's refinement after the run (OMPL's time is the planner's alone): optimise,
-    // certify the planner's plan and the refinement, keep the better (plan_refinement.h).
-    const trajopt::PlanOptimizer optimizer(model);
-    const trajopt::RefineOutcome out =
-        trajopt::refinePlan(optimizer, plan, trajopt::RefineSettings{},
-                            support ? support_planner->margins() : plan::PlanMargins{});
-    const plan::OptimizationSummary& o = out.plan.optimization;
+    // certify the planner's plan and the refinement, keep the better (refine_and_certify.h).
+    const trajopt::PlanRefiner refiner(model, trajopt::OptimizerSettings{});
+    const planner::RefinementResult out = planner::refineAndCertify(
+        refiner, plan, support ? support_planner->margins() : plan::PlanMargins{},
+        plan::CertificateSettings{});
+    const plan::OptimizationSummary& o = out.record.optimization;
     run["optimizer success BOOLEAN"] = out.converged ? "1" : "0";
-    run["optimizer status ENUM"] = optimizerStatusIndex(o.status);
+    run["optimizer status ENUM"] = std::to_string(static_cast<int>(o.status));
     run["optimizer iterations INTEGER"] = std::to_string(o.iterations);
     run["optimizer time REAL"] = num(o.solve_time);
     if (std::isfinite(o.cost_before)) run["cost before REAL"] = num(o.cost_before);
@@ -165,10 +132,10 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
       if (o.cost_before > 0.0) run["cost reduction REAL"] = num(1.0 - o.cost_after / o.cost_before);
     }
     run["refined chosen BOOLEAN"] = out.refined ? "1" : "0";
-    run["certified BOOLEAN"] = out.plan.certificate.certified ? "1" : "0";
-    run["certificate success rate REAL"] = num(out.plan.certificate.success_rate);
-    run["certificate lower bound REAL"] = num(out.plan.certificate.lower_bound);
-    run["certificate trials INTEGER"] = std::to_string(out.plan.certificate.trials);
+    run["certified BOOLEAN"] = out.record.certificate.certified ? "1" : "0";
+    run["certificate success rate REAL"] = num(out.record.certificate.success_rate);
+    run["certificate lower bound REAL"] = num(out.record.certificate.lower_bound);
+    run["certificate trials INTEGER"] = std::to_string(out.record.certificate.trials);
   });
   // One run, no console output, no path simplification (geometric only).
   const ompl::tools::Benchmark::Request request(rs.time_limit, 4096.0, 1, 0.05, false, false,
@@ -180,7 +147,8 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
   ExperimentLog log = parseLog(text.str(), "OMPL's benchmark log");
   if (rs.optimize) {
     std::string e = "optimizer status";
-    for (const std::string& name : optimizerStatuses()) e += "|" + name;
+    for (plan::SolverStatus status : plan::solverStatuses())
+      e += std::string("|") + toString(status);
     log.enums.push_back(e);
   }
   writeFileAtomically(log_path, formatLog(log), "--out");

@@ -65,12 +65,13 @@ std::vector<TrajectorySample> PlanOutputs::frames(const RbsfModel& model, const 
   return {f};
 }
 
-void PlanOutputs::write(const RbsfModel& model, const plan::Plan& plan,
+void PlanOutputs::write(const RbsfModel& model, const plan::PlanRecord& record,
                         const std::vector<ReportSection>& sections) const {
+  const plan::Plan& plan = record.plan;
   plan::PlanFileOptions file;
   file.wall_clock = !o_.reproducible;
   std::vector<std::pair<std::string, std::string>> texts;  // path, text: all formatted first
-  if (!o_.json.empty()) texts.emplace_back(o_.json, plan::planJsonText(plan, file));
+  if (!o_.json.empty()) texts.emplace_back(o_.json, plan::planJsonText(record, file));
   if (!o_.csv.empty()) texts.emplace_back(o_.csv, plan::planCsvText(plan));
   if (!o_.svg.empty() || !o_.report.empty()) {
     SvgAnimationOptions a;
@@ -98,8 +99,8 @@ void PlanOutputs::write(const RbsfModel& model, const plan::Plan& plan,
                                            static_cast<double>(plan.propagations))}};
       if (file.wall_clock) rows.emplace_back("planning time", format("%.3f s", plan.planning_time));
       ReportVerdict verdict;
-      if (plan.certificate.ran) {
-        const plan::Certificate& c = plan.certificate;
+      if (record.certificate.ran) {
+        const plan::Certificate& c = record.certificate;
         verdict = {true, c.certified, plan::verdictText(c),
                    "Law: " + c.law + ". Worst " + plan::worstTrialText(c) + "."};
         rows.emplace_back("certificate",

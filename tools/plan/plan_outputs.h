@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "rbsf/dynamics/model.h"
-#include "rbsf/plan/plan.h"
+#include "rbsf/plan/plan_file.h"
 #include "rbsf/tools/html_report.h"
 #include "rbsf/tools/trajectory_writer.h"
 
@@ -44,7 +44,7 @@ class PlanOutputs {
   /// \brief Format every requested file, then write each atomically.
   /// \throws std::runtime_error for a NaN in the plan, InputError for an I/O failure.
   ///        `sections` go into the report below its summary.
-  void write(const RbsfModel& model, const plan::Plan& plan,
+  void write(const RbsfModel& model, const plan::PlanRecord& record,
              const std::vector<ReportSection>& sections = {}) const;
 
   /// \brief The plan's samples as drawn (the start q0 alone when the plan has none).

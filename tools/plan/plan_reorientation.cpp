@@ -22,6 +22,7 @@
 #include <iostream>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "plan_outputs.h"
@@ -32,7 +33,6 @@
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
 #include "rbsf/tools/tool_main.h"
-#include "rbsf/trajopt/plan_refinement.h"
 
 namespace rbsf::tools {
 namespace {
@@ -103,11 +103,11 @@ void parseSupportOptions(const std::string& friction_use, const std::string& sim
 }
 
 /// The optimiser's line: which solve, how it went, and whether its plan was chosen.
-void printOptimisation(const trajopt::RefineOutcome& r) {
-  const plan::OptimizationSummary& o = r.plan.optimization;
-  const char* which = r.attempts < 2 ? "" : (r.refined ? " (the retry)" : " (first of 2 solves)");
+void printOptimisation(const planner::RefinementResult& r) {
+  const plan::OptimizationSummary& o = r.record.optimization;
+  const char* which = r.solves < 2 ? "" : (r.refined ? " (the retry)" : " (first of 2 solves)");
   std::printf("optimisation%s: %s, %d iterations, %.3f s, cost %.6g -> %.6g\n", which,
-              o.status.c_str(), o.iterations, o.solve_time, o.cost_before, o.cost_after);
+              plan::toString(o.status), o.iterations, o.solve_time, o.cost_before, o.cost_after);
   std::printf("planner's plan: %s\n", plan::verdictText(r.planner_certificate).c_str());
   if (o.refined_success_rate >= 0.0)
     std::printf("optimised plan: %.0f %% of the trials succeeded\n",
@@ -116,7 +116,7 @@ void printOptimisation(const trajopt::RefineOutcome& r) {
     std::printf(
         "written: the optimised plan (its certificate's lower bound %.3f is at least the "
         "planner's plan's %.3f; effort %.2f of the planner's)\n",
-        r.plan.certificate.lower_bound, r.planner_certificate.lower_bound,
+        r.record.certificate.lower_bound, r.planner_certificate.lower_bound,
         o.cost_before > 0.0 ? o.cost_after / o.cost_before : 1.0);
   else
     std::printf("written: the planner's plan%s\n",
@@ -137,33 +137,8 @@ void printCertificate(const plan::Certificate& c) {
   std::fputs(plan::certificateReportText(c).c_str(), stdout);
 }
 
-int run(int argc, char** argv) {
-  CLI::App app{
-      "Plan a reorientation of the part: tau segments that take it from rest on the "
-      "fingers (placed at --start-theta) to the goal pose within 1 cm and 2 degrees. "
-      "Poses: COM x,y [m] and angle (radians, or degrees with a deg suffix).",
-      "plan-reorientation"};
-  app.footer(
-      "Every plan written is certified: replayed in closed loop under the cell's sensing and "
-      "uncertainty (cell keys sensing and uncertainty) and judged by outcome: the part ends "
-      "at rest within 1 cm and 2 degrees of the goal, never dropped, inputs within their "
-      "limits, the plan within the cell's motion limits; certified when the one-sided 95 % "
-      "Clopper-Pearson lower bound of the success rate is at least 0.95 (--confidence, "
-      "--required-rate), the trials run in batches of 64 until the bound decides, at most 512 "
-      "(--trial-batch, --max-trials), or exactly --trials N. Planning goes on until a plan "
-      "certifies: the support "
-      "planner, then kinodynamic seeds while --time-limit lasts; exact kinodynamic plans are "
-      "refined by the trajectory optimiser (unless --no-optimize). The first certified plan "
-      "is written, else the best one found, marked not certified.\n"
-      "Exit status: 0 a certified plan written; 4 an exact plan written but not certified "
-      "(verdict on stderr); 3 time limit without an exact plan (where the closest plan ends, "
-      "in metres and degrees; the approximate plan written), or every search ended without a "
-      "path (nothing written); 2 bad input (option, value, "
-      "file, a start the fingers cannot hold, a goal no finger reaches), with one message on "
-      "stderr; 130 stopped by SIGINT, 143 by SIGTERM (Ctrl-C or kill, during the search or "
-      "the optimisation: the best plan so far is written, not certified; a second signal "
-      "exits at once, writing nothing); 1 internal error.");
-  Options o;
+/// The problem and the search's options.
+void addSearchOptions(CLI::App& app, Options& o) {
   app.add_option("--cell", o.cell, "cell YAML file")->required();
   app.add_option("--start", o.start, "start pose x,y,phi (part at rest)")->required();
   app.add_option("--goal", o.goal, "goal pose x,y,phi")->required();
@@ -183,6 +158,10 @@ int run(int argc, char** argv) {
   app.add_option("--seed", o.seed, "first kinodynamic seed, positive integer (default 1)");
   app.add_option("--attempts", o.attempts,
                  "kinodynamic searches at most (default 0: while the time limit lasts)");
+}
+
+/// The output files' options.
+void addOutputOptions(CLI::App& app, Options& o) {
   app.add_option("--out", o.out, "write the plan as JSON");
   app.add_option("--csv", o.csv, "write the sampled trajectory as CSV");
   app.add_option("--svg", o.svg, "write an animated SVG of the plan");
@@ -198,6 +177,10 @@ int run(int argc, char** argv) {
                "let contacts change mode anywhere within a held torque (plans a tracking cell "
                "often cannot repeat; see docs/tools.md)");
   app.add_flag("--no-optimize", o.no_optimize, "write the planner's plan without optimising it");
+}
+
+/// The optimiser's, the certificate's and the support planner's options.
+void addStageOptions(CLI::App& app, Options& o) {
   app.add_option("--knots", o.knots, "collocation intervals of the optimiser (default 100)");
   app.add_option("--optimize-time-limit", o.optimize_time_limit,
                  "optimiser wall-time limit per solve in seconds (default 30)");
@@ -228,16 +211,16 @@ int run(int argc, char** argv) {
   app.add_option("--support-lattice", o.support_lattice,
                  "support planner: the search's angle and position steps (default " +
                      defaultLattice() + "; finer lattices find more paths and take longer)");
-  parseCommandLine(app, argc, argv);
-  const PlanOutputs outputs({o.out, o.csv, o.svg, o.report, o.reproducible,
-                             parseNumber(o.svg_still, "--svg-still"), o.cell});
+}
 
-  using Method = planner::PipelineSettings::Method;
+/// The pipeline's settings from the options. \throws InputError naming a bad option.
+planner::PipelineSettings pipelineSettings(const Options& o) {
   const auto& names = planner::plannerNames();
   if (o.planner != "auto" && o.planner != "support" &&
       std::find(names.begin(), names.end(), o.planner) == names.end())
     throw InputError("--planner: unknown planner '" + o.planner +
                      "' (choose from auto, support, KPIECE1, RRT, SST, EST, PDST)");
+  using Method = planner::PipelineMethod;
   planner::PipelineSettings pipeline;
   pipeline.method = o.planner == "auto"      ? Method::kAuto
                     : o.planner == "support" ? Method::kSupport
@@ -250,19 +233,19 @@ int run(int argc, char** argv) {
     throw InputError("--time-limit: must be positive, at most 1e6 s (got " + o.time_limit + ")");
   settings.seed = static_cast<std::uint32_t>(parseInteger(o.seed, "--seed", 1, 4294967295LL));
   pipeline.max_attempts = static_cast<int>(parseInteger(o.attempts, "--attempts", 0, 1000000));
-  trajopt::OptimizerSettings opt_settings;
-  opt_settings.knots = static_cast<int>(parseInteger(o.knots, "--knots", 2, 100000));
-  opt_settings.max_solve_time = parseNumber(o.optimize_time_limit, "--optimize-time-limit");
-  if (!(opt_settings.max_solve_time > 0.0))
+  pipeline.optimize = !o.no_optimize;
+  trajopt::OptimizerSettings& opt = pipeline.optimizer;
+  opt.knots = static_cast<int>(parseInteger(o.knots, "--knots", 2, 100000));
+  opt.max_solve_time = parseNumber(o.optimize_time_limit, "--optimize-time-limit");
+  if (!(opt.max_solve_time > 0.0))
     throw InputError("--optimize-time-limit: must be positive (got " + o.optimize_time_limit + ")");
-  opt_settings.max_iterations =
+  opt.max_iterations =
       static_cast<int>(parseInteger(o.optimize_iterations, "--optimize-iterations", 1, 1000000));
-  opt_settings.tolerance = parseNumber(o.optimize_tolerance, "--optimize-tolerance");
-  if (!(opt_settings.tolerance > 0.0 && opt_settings.tolerance <= 1.0))
+  opt.tolerance = parseNumber(o.optimize_tolerance, "--optimize-tolerance");
+  if (!(opt.tolerance > 0.0 && opt.tolerance <= 1.0))
     throw InputError("--optimize-tolerance: must be in (0, 1] (got " + o.optimize_tolerance + ")");
-  plan::CertificateSettings& certificate = pipeline.certificate;
-  o.certificate.apply(certificate);
-  certificate.seed =
+  o.certificate.apply(pipeline.certificate);
+  pipeline.certificate.seed =
       static_cast<std::uint64_t>(parseInteger(o.trial_seed, "--trial-seed", 1, 1LL << 53));
   parseSupportOptions(o.friction_use, o.simple_turns, o.support_lattice, pipeline.support);
   if (!o.max_expansions.empty())
@@ -271,6 +254,11 @@ int run(int argc, char** argv) {
   if (!o.max_propagations.empty())
     settings.max_propagations = static_cast<std::uint64_t>(
         parseInteger(o.max_propagations, "--max-propagations", 1, 1000000000000LL));
+  return pipeline;
+}
+
+/// The problem from the options. \throws InputError naming a bad option.
+planner::Problem problemOf(const Options& o) {
   planner::Problem problem;
   problem.start = parsePose(o.start, "--start");
   problem.goal = parsePose(o.goal, "--goal");
@@ -278,43 +266,38 @@ int run(int argc, char** argv) {
     throw InputError("--goal-angle: must be nearest or absolute (got " + o.goal_angle + ")");
   problem.absolute_angle = o.goal_angle == "absolute";
   problem.start_theta = parseAngle(o.start_theta, "--start-theta");
+  return problem;
+}
 
-  // Progress on stderr unless --quiet: on a terminal one line redrawn every second; else
-  // (a log, a pipe) a line per stage and one every 5 s of a search.
-  const bool tty = isatty(fileno(stderr));
-  bool progress_shown = false;
-  double last_line = -1e9;
-  if (!o.quiet) {
-    settings.progress = [&progress_shown, &last_line, tty](const planner::Progress& p) {
-      if (!tty && p.elapsed < last_line + 5.0) return;
-      if (!tty) last_line = p.elapsed;
-      std::fprintf(
-          stderr,
-          "%splan-reorientation: %6.1f s  %10llu propagations  closest %.3g (1 = 1 cm or 2 deg)%s",
-          tty ? "\r" : "", p.elapsed, static_cast<unsigned long long>(p.propagations),
-          p.best_distance, tty ? " " : "\n");
-      std::fflush(stderr);
-      progress_shown = tty;
-    };
-    pipeline.on_stage = [&progress_shown, &last_line](planner::PipelineStage st,
-                                                      const std::string& method,
-                                                      std::uint32_t seed) {
-      std::fprintf(stderr, "%splan-reorientation: %s\n", progress_shown ? "\n" : "",
-                   planner::stageText(st, method, seed).c_str());
-      progress_shown = false;
-      last_line = -1e9;
-    };
+/// The pipeline's events as lines: progress and stages on stderr (unless --quiet: on a
+/// terminal one line redrawn every second; else, a log or a pipe, a line per stage and one
+/// every 5 s of a search), plans found, refinements and verdicts on stdout.
+class EventPrinter {
+ public:
+  explicit EventPrinter(bool quiet) : quiet_(quiet), tty_(isatty(fileno(stderr)) != 0) {}
+
+  void operator()(const planner::StageStarted& e) {
+    if (quiet_) return;
+    std::fprintf(stderr, "%splan-reorientation: %s\n", progress_shown_ ? "\n" : "",
+                 planner::stageText(e.stage, e.attempt.method(), e.attempt.seed).c_str());
+    progress_shown_ = false;
+    last_line_ = -1e9;
   }
-  const RbsfModel model(loadCell(o.cell));
-  settings.cancel = &InterruptFlag::install();  // Ctrl-C: stop and write the best so far
-  opt_settings.cancel = settings.cancel;
-  const trajopt::PlanOptimizer optimizer(model, opt_settings);  // bad settings: exit 2
-  if (!o.no_optimize)
-    pipeline.refine = trajopt::refinementStep(optimizer, [](const trajopt::RefineOutcome& r) {
-      if (!InterruptFlag::raised()) printOptimisation(r);
-    });
-  pipeline.on_found = [](const planner::PipelineAttempt& a, const plan::Plan& plan) {
-    if (a.method == "support") {
+  void operator()(const planner::SearchProgress& e) {
+    const planner::Progress& p = e.progress;
+    if (quiet_ || (!tty_ && p.elapsed < last_line_ + 5.0)) return;
+    if (!tty_) last_line_ = p.elapsed;
+    std::fprintf(
+        stderr,
+        "%splan-reorientation: %6.1f s  %10llu propagations  closest %.3g (1 = 1 cm or 2 deg)%s",
+        tty_ ? "\r" : "", p.elapsed, static_cast<unsigned long long>(p.propagations),
+        p.best_distance, tty_ ? " " : "\n");
+    std::fflush(stderr);
+    progress_shown_ = tty_;
+  }
+  void operator()(const planner::PlanFound& e) const {
+    const planner::PipelineAttempt& a = e.attempt;
+    if (a.search == planner::SearchKind::kSupport) {
       std::printf("support path: sticking forces within %.2f of the friction cone, %ld expansions",
                   a.friction_use, a.expansions);
       if (a.paths_run > 1)
@@ -324,31 +307,39 @@ int run(int argc, char** argv) {
             a.paths_run);
       std::printf("\n");
     }
+    const plan::Plan& plan = e.plan;
     if (plan.status != plan::PlanStatus::kExact) return;
     std::printf(
         "exact plan: %zu segments, %.3f s of motion, phases %s; planned in %.3f s, %llu "
         "propagations\n",
         plan.segments.size(), plan.duration(), plan.phaseSequence().c_str(), plan.planning_time,
         static_cast<unsigned long long>(plan.propagations));
-  };
-  pipeline.on_attempt = [](const planner::PipelineAttempt& a, const plan::Plan&) {
-    if (!a.found && a.method == "support")
+  }
+  void operator()(const planner::PlanRefined& e) const {
+    if (!InterruptFlag::raised()) printOptimisation(e.refinement);
+  }
+  void operator()(const planner::AttemptJudged& e) const {
+    const planner::PipelineAttempt& a = e.attempt;
+    if (!a.found && a.search == planner::SearchKind::kSupport)
       std::printf("no support path: %s (%ld expansions)\n", a.note.c_str(), a.expansions);
     else if (!a.found)
-      std::printf("%s, seed %u: no path within the time left\n", a.method.c_str(), a.seed);
+      std::printf("%s, seed %u: no path within the time left\n", a.method().c_str(), a.seed);
     else if (a.certificate.ran)
       printCertificate(a.certificate);
-  };
-  planner::ReorientationPipeline run(model, pipeline);
-  planner::PipelineOutcome result = run.run(problem);  // bad problem: exit 2 before any search
-  plan::Plan& plan = result.plan;
-  const bool found = result.chosen >= 0;
-  const std::string method = found ? result.attempts[result.chosen].method : "";
-  // A support search that found nothing answers what the cell allows: what it reached and
-  // the rule that refused the moves beyond (stderr, and a section of the report).
+  }
+
+ private:
+  bool quiet_, tty_;
+  bool progress_shown_ = false;
+  double last_line_ = -1e9;
+};
+
+/// A support search that found nothing answers what the cell allows: what it reached and
+/// the rule that refused the moves beyond (stderr, and a section of the report).
+std::vector<ReportSection> reachSections(const planner::PipelineOutcome& result) {
   std::vector<ReportSection> sections;
   for (const planner::PipelineAttempt& a : result.attempts)
-    if (a.method == "support" && !a.found && a.reach.measured && a.note != "cancelled") {
+    if (a.search == planner::SearchKind::kSupport && !a.found && a.reach.measured && !a.cancelled) {
       const std::string reach = a.reach.text();
       std::fprintf(stderr, "plan-reorientation: no support path; the search %s\n", reach.c_str());
       sections.push_back(
@@ -357,19 +348,27 @@ int run(int argc, char** argv) {
                ". The rule that refused most of the moves beyond the closest pose: " +
                planner::supportRuleText(a.reach.stoppedBy()) + "."});
     }
-  if (found && result.attempts.size() > 1)
-    std::printf("chosen: attempt %d of %zu (%s%s), %s\n", result.chosen + 1, result.attempts.size(),
-                method.c_str(),
-                method == "support"
-                    ? ""
-                    : (", seed " + std::to_string(result.attempts[result.chosen].seed)).c_str(),
-                planner::statusText(result.status));
+  return sections;
+}
 
+/// Write what the run produced and say what it is; returns the exit status (file comment).
+int report(const planner::PipelineOutcome& result, const planner::PipelineSettings& pipeline,
+           const planner::Problem& problem, const RbsfModel& model, const PlanOutputs& outputs) {
+  const plan::PlanRecord& record = result.record;
+  const plan::Plan& plan = record.plan;
+  const planner::PipelineAttempt* chosen = result.chosenAttempt();
+  const bool support = chosen != nullptr && chosen->search == planner::SearchKind::kSupport;
+  const std::vector<ReportSection> sections = reachSections(result);
+  if (chosen != nullptr && result.attempts.size() > 1)
+    std::printf("chosen: attempt %d of %zu (%s%s), %s\n", result.chosen + 1, result.attempts.size(),
+                chosen->method().c_str(),
+                support ? "" : (", seed " + std::to_string(chosen->seed)).c_str(),
+                planner::statusText(result.status));
+  const double time_limit = pipeline.planner.time_limit;
   switch (result.status) {
     case planner::PipelineStatus::kCancelled:
-      if (found) {
-        plan.certificate = {};
-        outputs.write(model, plan, sections);
+      if (chosen != nullptr) {
+        outputs.write(model, record, sections);
         std::printf("interrupted: the best plan so far %s%s, not certified\n",
                     endText(plan, problem).c_str(), outputs.any() ? ", written" : "");
       } else {
@@ -377,38 +376,84 @@ int run(int argc, char** argv) {
       }
       return InterruptFlag::exitStatus();
     case planner::PipelineStatus::kCertified:
-      outputs.write(model, plan, sections);
+      outputs.write(model, record, sections);
       return 0;
     case planner::PipelineStatus::kNotCertified:
-      outputs.write(model, plan, sections);
+      outputs.write(model, record, sections);
       std::fprintf(stderr, "plan-reorientation: the plan written is %s\n",
-                   plan::verdictText(plan.certificate).c_str());
+                   plan::verdictText(record.certificate).c_str());
       return kExitNotCertified;
     case planner::PipelineStatus::kNoPlan:
       // A search that ran out of nodes is an answer, not a time limit: say which it was.
-      if (result.wall_time < 0.99 * settings.time_limit)
+      if (result.wall_time < 0.99 * time_limit)
         std::printf("no plan: every search ended without a path, after %.3g s of %.3g\n",
-                    result.wall_time, settings.time_limit);
+                    result.wall_time, time_limit);
       else
-        std::printf("no plan within %.3g s\n", settings.time_limit);
+        std::printf("no plan within %.3g s\n", time_limit);
       return kExitTimeLimit;
     case planner::PipelineStatus::kApproximate:
       break;
   }
-  outputs.write(model, plan, sections);
+  outputs.write(model, record, sections);
   // The support path was found but its closed-loop run missed the goal; a kinodynamic
-  // search ended at its closest approach.
-  // What ended the search: the time limit, the budget, or (support) the paths it had.
+  // search ended at its closest approach. What ended the search: the time limit, the
+  // budget, or (support) the paths it had.
   char within[64] = "";
-  if (result.wall_time >= 0.99 * settings.time_limit)
-    std::snprintf(within, sizeof within, " within %.3g s", settings.time_limit);
-  else if (method != "support" && settings.max_propagations > 0)
+  if (result.wall_time >= 0.99 * time_limit)
+    std::snprintf(within, sizeof within, " within %.3g s", time_limit);
+  else if (!support && pipeline.planner.max_propagations > 0)
     std::snprintf(within, sizeof within, " within %llu propagations",
-                  static_cast<unsigned long long>(settings.max_propagations));
+                  static_cast<unsigned long long>(pipeline.planner.max_propagations));
   std::printf("no exact plan%s: the %s %s%s\n", within,
-              method == "support" ? "support path's closed-loop run" : "closest plan",
+              support ? "support path's closed-loop run" : "closest plan",
               endText(plan, problem).c_str(), outputs.any() ? ", approximate plan written" : "");
   return kExitTimeLimit;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{
+      "Plan a reorientation of the part: tau segments that take it from rest on the "
+      "fingers (placed at --start-theta) to the goal pose within 1 cm and 2 degrees. "
+      "Poses: COM x,y [m] and angle (radians, or degrees with a deg suffix).",
+      "plan-reorientation"};
+  app.footer(
+      "Every plan written is certified: replayed in closed loop under the cell's sensing and "
+      "uncertainty (cell keys sensing and uncertainty) and judged by outcome: the part ends "
+      "at rest within 1 cm and 2 degrees of the goal, never dropped, inputs within their "
+      "limits, the plan within the cell's motion limits; certified when the one-sided 95 % "
+      "Clopper-Pearson lower bound of the success rate is at least 0.95 (--confidence, "
+      "--required-rate), the trials run in batches of 64 until the bound decides, at most 512 "
+      "(--trial-batch, --max-trials), or exactly --trials N. Planning goes on until a plan "
+      "certifies: the support "
+      "planner, then kinodynamic seeds while --time-limit lasts; exact kinodynamic plans are "
+      "refined by the trajectory optimiser (unless --no-optimize). The first certified plan "
+      "is written, else the best one found, marked not certified.\n"
+      "Exit status: 0 a certified plan written; 4 an exact plan written but not certified "
+      "(verdict on stderr); 3 time limit without an exact plan (where the closest plan ends, "
+      "in metres and degrees; the approximate plan written), or every search ended without a "
+      "path (nothing written); 2 bad input (option, value, "
+      "file, a start the fingers cannot hold, a goal no finger reaches), with one message on "
+      "stderr; 130 stopped by SIGINT, 143 by SIGTERM (Ctrl-C or kill, during the search or "
+      "the optimisation: the best plan so far is written, not certified; a second signal "
+      "exits at once, writing nothing); 1 internal error.");
+  Options o;
+  addSearchOptions(app, o);
+  addOutputOptions(app, o);
+  addStageOptions(app, o);
+  parseCommandLine(app, argc, argv);
+  const PlanOutputs outputs({o.out, o.csv, o.svg, o.report, o.reproducible,
+                             parseNumber(o.svg_still, "--svg-still"), o.cell});
+  const planner::PipelineSettings pipeline = pipelineSettings(o);
+  const planner::Problem problem = problemOf(o);
+  const RbsfModel model(loadCell(o.cell));
+  planner::ReorientationPipeline run(model, pipeline);  // bad settings: exit 2
+  planner::RunContext context;
+  context.cancel = &InterruptFlag::install();  // Ctrl-C: stop and write the best so far
+  EventPrinter printer(o.quiet);
+  context.on_event = [&printer](const planner::PipelineEvent& e) { std::visit(printer, e); };
+  // A bad problem: exit 2 before any search.
+  const planner::PipelineOutcome result = run.run(problem, context);
+  return report(result, pipeline, problem, model, outputs);
 }
 
 }  // namespace

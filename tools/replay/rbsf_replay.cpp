@@ -18,6 +18,7 @@
 #include "rbsf/dynamics/errors.h"
 #include "rbsf/dynamics/trajectory_sample.h"
 #include "rbsf/plan/certificate.h"
+#include "rbsf/plan/plan_file.h"
 #include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"
@@ -71,7 +72,7 @@ int run(int argc, char** argv) {
   files.addOutput(csv, "--csv");
 
   const RbsfModel model(loadCell(cell));
-  const plan::Plan plan = plan::readPlanJson(plan_path);
+  const plan::Plan plan = plan::readPlanJson(plan_path).plan;
   if (plan.q0.size() != model.configDim())
     throw InputError("--plan: the plan is for " + std::to_string(plan.q0.size() - 4) +
                      " fingers; the cell " + cell + " has " + std::to_string(model.numFingers()));

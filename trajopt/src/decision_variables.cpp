@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "rbsf/trajopt/nlp_element.h"
-#include "rbsf/trajopt/plan_optimizer.h"
+#include "rbsf/trajopt/optimizer_settings.h"
 
 namespace rbsf::trajopt {
 

@@ -14,48 +14,48 @@ namespace rbsf::trajopt {
 
 namespace {
 
-std::string statusName(Ipopt::ApplicationReturnStatus s) {
+plan::SolverStatus statusOf(Ipopt::ApplicationReturnStatus s) {
   switch (s) {
     case Ipopt::Solve_Succeeded:
-      return "Solve_Succeeded";
+      return plan::SolverStatus::kSolveSucceeded;
     case Ipopt::Solved_To_Acceptable_Level:
-      return "Solved_To_Acceptable_Level";
+      return plan::SolverStatus::kSolvedToAcceptableLevel;
     case Ipopt::Infeasible_Problem_Detected:
-      return "Infeasible_Problem_Detected";
+      return plan::SolverStatus::kInfeasibleProblemDetected;
     case Ipopt::Search_Direction_Becomes_Too_Small:
-      return "Search_Direction_Becomes_Too_Small";
+      return plan::SolverStatus::kSearchDirectionBecomesTooSmall;
     case Ipopt::Diverging_Iterates:
-      return "Diverging_Iterates";
+      return plan::SolverStatus::kDivergingIterates;
     case Ipopt::User_Requested_Stop:
-      return "User_Requested_Stop";
+      return plan::SolverStatus::kUserRequestedStop;
     case Ipopt::Feasible_Point_Found:
-      return "Feasible_Point_Found";
+      return plan::SolverStatus::kFeasiblePointFound;
     case Ipopt::Maximum_Iterations_Exceeded:
-      return "Maximum_Iterations_Exceeded";
+      return plan::SolverStatus::kMaximumIterationsExceeded;
     case Ipopt::Restoration_Failed:
-      return "Restoration_Failed";
+      return plan::SolverStatus::kRestorationFailed;
     case Ipopt::Error_In_Step_Computation:
-      return "Error_In_Step_Computation";
+      return plan::SolverStatus::kErrorInStepComputation;
     case Ipopt::Maximum_CpuTime_Exceeded:
-      return "Maximum_CpuTime_Exceeded";
+      return plan::SolverStatus::kMaximumCpuTimeExceeded;
     case Ipopt::Not_Enough_Degrees_Of_Freedom:
-      return "Not_Enough_Degrees_Of_Freedom";
+      return plan::SolverStatus::kNotEnoughDegreesOfFreedom;
     case Ipopt::Invalid_Problem_Definition:
-      return "Invalid_Problem_Definition";
+      return plan::SolverStatus::kInvalidProblemDefinition;
     case Ipopt::Invalid_Option:
-      return "Invalid_Option";
+      return plan::SolverStatus::kInvalidOption;
     case Ipopt::Invalid_Number_Detected:
-      return "Invalid_Number_Detected";
+      return plan::SolverStatus::kInvalidNumberDetected;
     case Ipopt::Unrecoverable_Exception:
-      return "Unrecoverable_Exception";
+      return plan::SolverStatus::kUnrecoverableException;
     case Ipopt::NonIpopt_Exception_Thrown:
-      return "NonIpopt_Exception_Thrown";
+      return plan::SolverStatus::kNonIpoptExceptionThrown;
     case Ipopt::Insufficient_Memory:
-      return "Insufficient_Memory";
+      return plan::SolverStatus::kInsufficientMemory;
     case Ipopt::Internal_Error:
-      return "Internal_Error";
+      return plan::SolverStatus::kInternalError;
   }
-  return "Unknown_Status";
+  return plan::SolverStatus::kUnknownStatus;
 }
 
 void require(bool ok, const std::string& what) {
@@ -112,8 +112,7 @@ OptimizedPlan PlanOptimizer::optimize(const plan::Plan& plan) const {
   checkPlan(model_, plan);
   OptimizedPlan out;
   out.plan = plan;
-  plan::OptimizationSummary& summary = out.plan.optimization;
-  summary = plan::OptimizationSummary{};
+  plan::OptimizationSummary& summary = out.summary;
   summary.ran = true;
   summary.cost_before = planEffort(model_, plan);
   const auto start = std::chrono::steady_clock::now();
@@ -123,7 +122,7 @@ OptimizedPlan PlanOptimizer::optimize(const plan::Plan& plan) const {
 
   const TrajectoryProblem problem(model_, plan, settings_);
   if (!problem.ok()) {
-    summary.status = "Not_Solved";
+    summary.status = plan::SolverStatus::kNotSolved;
     summary.message = "optimisation not attempted: " + problem.why();
     summary.cost_after = summary.cost_before;
     summary.solve_time = elapsed();
@@ -141,8 +140,7 @@ OptimizedPlan PlanOptimizer::optimize(const plan::Plan& plan) const {
   // At most 3 iterative-refinement steps per linear solve (Ipopt's default is 10): on the
   // benchmark's plans the same or fewer iterations at about 15 % less time each; the extra
   // back-solves, where refinement stalls short of residual_ratio_max on a poorly
-  // conditioned KKT system, bought nothing (the optimiser's iteration-cost record in
-  // docs/notes/).
+  // conditioned KKT system, bought nothing.
   o.SetIntegerValue("max_refinement_steps", 3);
   o.SetStringValue("hessian_approximation", settings_.exact_hessian ? "exact" : "limited-memory");
   o.SetIntegerValue("print_level", settings_.print_level);
@@ -165,25 +163,24 @@ OptimizedPlan PlanOptimizer::optimize(const plan::Plan& plan) const {
                                                        settings_.cancel, settings_.max_solve_time);
   if (status == Ipopt::Solve_Succeeded) status = app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
   summary.solve_time = elapsed();
-  summary.status = nlp->wallTimeExceeded() ? "Maximum_WallTime_Exceeded" : statusName(status);
+  summary.status =
+      nlp->wallTimeExceeded() ? plan::SolverStatus::kMaximumWallTimeExceeded : statusOf(status);
   summary.iterations = nlp->iterations();
   const bool converged =
       status == Ipopt::Solve_Succeeded || status == Ipopt::Solved_To_Acceptable_Level;
   const Eigen::VectorXd& z = nlp->solution();
   if (!converged || z.size() != problem.size() || !z.allFinite()) {
     std::ostringstream msg;
-    msg << "Ipopt did not converge (" << summary.status << " after " << summary.iterations
-        << " iterations";
+    msg << "Ipopt did not converge (" << plan::toString(summary.status) << " after "
+        << summary.iterations << " iterations";
     if (z.size() == problem.size()) msg << ", constraint violation " << nlp->constraintViolation();
     msg << "); the planner's plan is kept";
     summary.message = msg.str();
     summary.cost_after = summary.cost_before;
     return out;
   }
-  plan::OptimizationSummary kept = summary;
-  kept.cost_after = problem.effort(z);
+  summary.cost_after = problem.effort(z);
   out.plan = problem.toPlan(z, plan);
-  out.plan.optimization = kept;
   const DecisionLayout& dl = problem.layout();
   for (int k = 0; k < dl.knots(); ++k) {
     out.f_t.push_back(z.segment(dl.ft(k), dl.fingers()));

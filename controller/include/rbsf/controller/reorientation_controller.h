@@ -5,8 +5,8 @@
 ///        the control law (rbsf/dynamics/control_law.h).
 ///
 /// Threads. plan() starts a worker thread and returns at once; the worker runs the
-/// planner (planner/reorientation_planner.h) and, when asked and built in, the optimiser
-/// (trajopt/plan_refinement.h), certifies the result (plan/certificate.h: closed-loop
+/// pipeline (planner/reorientation_pipeline.h: the planners and, when asked, the optimiser),
+/// which certifies the result (plan/certificate.h: closed-loop
 /// trials under the cell's sensing and uncertainty), builds the plan's feedback schedule
 /// and publishes it. Any number of threads may call sample(), publishedPlan(), status(),
 /// outcome() and planId() at any time, also while the worker runs: they take no lock,
@@ -43,10 +43,10 @@
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/reference_trajectory.h"
 #include "rbsf/plan/certificate.h"
-#include "rbsf/plan/plan.h"
+#include "rbsf/plan/plan_file.h"
 #include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/reorientation_pipeline.h"
-#include "rbsf/trajopt/plan_optimizer.h"
+#include "rbsf/trajopt/optimizer_settings.h"
 
 namespace rbsf::controller {
 
@@ -90,7 +90,7 @@ struct ReorientationRequest {
     return s;
   }();
   /// \brief Refine the exact plan with rbsf::trajopt; of the planner's plan and the refined
-  ///        one the plan with the better certificate is published (plan_refinement.h).
+  ///        one the plan with the better certificate is published (refine_and_certify.h).
   bool optimize = false;
   trajopt::OptimizerSettings optimizer;  ///< its `cancel` is replaced as well
   /// \brief How the plan is certified (a fixed count of trials or the sequential default,
@@ -100,7 +100,7 @@ struct ReorientationRequest {
   /// \brief Which planners (reorientation_pipeline.h). The default, the kinodynamic planner
   ///        alone, suits a cell that senses the part; kAuto tries the support planner (plans
   ///        the joints alone hold) first.
-  planner::PipelineSettings::Method method = planner::PipelineSettings::Method::kKinodynamic;
+  planner::PipelineMethod method = planner::PipelineMethod::kKinodynamic;
   /// \brief Kinodynamic searches at most, seed after seed, until one certifies (0: while
   ///        planner.time_limit lasts).
   int max_attempts = 1;
@@ -116,7 +116,7 @@ struct ReorientationRequest {
 struct RequestResult {
   PlanOutcome outcome = PlanOutcome::kNone;
   std::string message;         ///< why it failed, or the certificate's verdict
-  plan::Plan plan;             ///< the plan (published or not) with its certificate
+  plan::PlanRecord record;     ///< the plan (published or not), its certificate and summary
   double best_distance = 0.0;  ///< planner's best goal distance [tolerance units]
   std::uint64_t plan_id = 0;   ///< id of the published plan, 0 when not published
 };
@@ -149,8 +149,9 @@ class ReorientationController {
   ///        masses and offsets, the part's placement at the start), and, unless
   ///        `accept_uncertified`, when it carries no certificate or a failed one. Not
   ///        real-time: it builds the schedule (tens of milliseconds for a 5 s plan).
-  bool load(const plan::Plan& plan, std::string* why = nullptr, bool accept_uncertified = false);
-  /// \brief load() of a plan file (plan.h readPlanJson); a file that cannot be read or
+  bool load(const plan::PlanRecord& record, std::string* why = nullptr,
+            bool accept_uncertified = false);
+  /// \brief load() of a plan file (plan_file.h readPlanJson); a file that cannot be read or
   ///        parsed is refused with the reader's message.
   bool loadFile(const std::string& path, std::string* why = nullptr,
                 bool accept_uncertified = false);

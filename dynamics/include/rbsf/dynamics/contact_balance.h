@@ -29,8 +29,7 @@
 /// few per cent more mass keeps the same contact modes. The default 0.45 leaves more than
 /// the 0.8 a 20 % draw needs: with three tips touching the split of the forces is not the
 /// LP's but the plant's (statically indeterminate), and at 0.6 the support plans of the
-/// default cell lost 3-8 of 32 trials to low-friction draws, at 0.45 none
-/// (docs/notes/2026-11-25-support-planner.md).
+/// default cell lost 3-8 of 32 trials to low-friction draws, at 0.45 none.
 ///
 /// **Joint-determined**: the rows of the set (2 per sticking contact, 1 per sliding one)
 /// fix the part's 3 degrees of freedom when the finger joints are held, i.e. their object

@@ -42,7 +42,7 @@
 /// the sensing's noise. Each knot keeps the joint gain of its first step and the part gain
 /// a sample at its first step would get.
 ///
-/// Tuning (docs/notes/2026-11-25-control-law.md): the defaults hold a part balanced on two
+/// Tuning: the defaults hold a part balanced on two
 /// frictionless tips under the default sensing; an input_fraction of 0.05 instead of 0.02
 /// loses it to the camera's noise, and so does process noise three times as large (a
 /// third as large loses it to model mismatch).
@@ -99,7 +99,7 @@ struct FeedbackSettings {
   /// \brief The joint-only estimate's process noise: the joints' acceleration off the
   ///        reference it expects [m/s^2, rad/s^2]. Ten times less than joint_acceleration:
   ///        the joint law runs slow plans, and a rate estimate that follows the encoders'
-  ///        noise shakes the part loose (docs/notes/2026-11-25-support-planner.md).
+  ///        noise shakes the part loose.
   double servo_acceleration = 0.2;
   // Kalman filter: process noise intensities [unit / s^2 / sqrt(Hz)] and drift [unit / s /
   // sqrt(Hz)].

@@ -2,65 +2,7 @@
 /// \file
 /// \brief A plan: tau segments, the trajectory they produce, and its files.
 ///
-/// JSON (writePlanJson / readPlanJson; keys in this order):
-/// | key             | meaning |
-/// |-----------------|---------|
-/// | `status`        | `"exact"` (goal reached) or `"approximate"` (closest found) |
-/// | `planner`, `seed` | planner name and RNG seed |
-/// | `planning_time` | wall time of the search [s] |
-/// | `propagations`  | propagate() calls (each k simulator steps) |
-/// | `goal_distance` | final distance in tolerance units (<= 1 when exact) |
-/// | `time_step`     | simulator step h [s]; `steps_per_control` k |
-/// | `simulator`     | the simulator's other settings (simulator.h): |
-/// |                 | `activation_distance`, `contact_tolerance`, `slip_tolerance`, |
-/// |                 | `regularization`, `curvature_terms`, `drift_correction`, |
-/// |                 | `max_mode_iterations`; defaults when absent |
-/// | `feedback`      | `"joints"` when the plan holds the part by the joints alone (its |
-/// |                 | law feeds back the joints only); absent otherwise |
-/// | `start`, `goal` | poses {x, y, phi}; `start_theta` the base angle at the start |
-/// | `q0`            | start configuration (state_layout.h order), at rest |
-/// | `phase_sequence` | the segments' phases, runs merged (Plan::phaseSequence) |
-/// | `segments[]`    | `phase` ("C", "P" or "U": the phase most steps of the segment |
-/// |                 | took in simulation), `duration` [s], `steps`, `tau`; `tau_end` |
-/// |                 | only for a ramp (optimised plans): tau goes linearly from `tau` |
-/// |                 | to `tau_end` over the segment; `contacts`: each finger's role |
-/// |                 | over the segment (contact_roles.h: "LS+" = finger 1 lifted, 2 |
-/// |                 | sticking, 3 sliding in +t), the planner's where it states them, |
-/// |                 | else what most of the segment's simulated steps did |
-/// | `samples[]`     | every `sample_steps` steps and at each segment end (optimised |
-/// |                 | plans: the collocation knots): `t`, `q`, `v`, `tau` (held over |
-/// |                 | the step that ends here), `f_n` per contact, `phase` of that step |
-/// | `optimization`  | only when the optimiser ran: `status` (Ipopt's name of its |
-/// |                 | return status), `iterations`, `solve_time` [s] (not with |
-/// |                 | --reproducible), `cost_before`, `cost_after` (effort integral |
-/// |                 | of tau^T W tau on the planner's / optimised plan), `chosen` |
-/// |                 | (true: the plan in the file is the optimised one), |
-/// |                 | `refined_success_rate` (the optimised plan's certificate, when |
-/// |                 | it ran) and `message` (why it failed or was not chosen) |
-/// | `certificate`   | when the plan was certified (certificate.h): `law`, `trials` |
-/// |                 | (run and counted), `successes`, `success_rate`, `lower_bound` |
-/// |                 | (the one-sided Clopper-Pearson lower bound of the rate, |
-/// |                 | confidence.h; checked against the counts on reading), |
-/// |                 | `confidence`, `required_rate`, `certified` (`lower_bound` >= |
-/// |                 | `required_rate`, and the motion and holding checks), |
-/// |                 | `sequential` (`false` for a fixed count, else {`batch`, |
-/// |                 | `max_trials`}), |
-/// |                 | `seed`, `criteria` {`position_tolerance` [m], `angle_tolerance` |
-/// |                 | [rad], `rest_speed` [m/s], `rest_angular_speed` [rad/s], |
-/// |                 | `settle_time` [s]}, the `sensing` and `uncertainty` used (cell |
-/// |                 | file keys), and the `worst` trial: `trial`, `success`, |
-/// |                 | `failure`, `position_error` [m], `angle_error` [rad], `speed` |
-/// |                 | [m/s], `angular_speed` [rad/s], `dropped` (and `dropped_time`), |
-/// |                 | `saturated_time` [s], `min_f_n` [N], `max_deviation` |
-/// |                 | [tolerance units], `phases`, and where it left the planned |
-/// |                 | path `departure_time` [s], `departure_phase`; `motion` (when |
-/// |                 | the plan has samples, plan_motion.h): `peak_speed` [m/s] and |
-/// |                 | `peak_speed_time` [s], `peak_angular_speed` [rad/s] and |
-/// |                 | `peak_angular_time`, `end_speed`, `end_angular_speed` and the |
-/// |                 | cell's `limits` {`part_speed`, `angular_speed`, `rest`}; |
-/// |                 | `holding` (under the joint law, plan_holding.h): `measured`, |
-/// |                 | `free_time`, `longest_free`, `longest_free_start`, |
-/// |                 | `max_free_time` [s] |
+/// The plan file (JSON, with its certificate and optimisation summary) is plan_file.h.
 ///
 /// CSV (writePlanCsv): one row per sample, the columns of trajectory_sample.h.
 /// Files are written to a temporary name and renamed; a plan with a NaN is refused.
@@ -77,7 +19,6 @@
 #include "rbsf/dynamics/placement.h"
 #include "rbsf/dynamics/simulator.h"
 #include "rbsf/dynamics/trajectory_sample.h"
-#include "rbsf/plan/certificate_report.h"
 
 namespace rbsf::plan {
 
@@ -94,20 +35,6 @@ struct PlanSegment {
   /// \brief Each contact's role over the segment (contact_roles.h); kUnplanned until the
   ///        planner or simulateSegments states it.
   ContactRoles contacts{};
-};
-
-/// \brief How the optimiser's solve went (plan file key `optimization`).
-struct OptimizationSummary {
-  bool ran = false;    ///< false: --no-optimize, key not written
-  std::string status;  ///< Ipopt's name of its return status, e.g. "Solve_Succeeded"
-  int iterations = 0;
-  double solve_time = 0.0;   ///< [s]
-  double cost_before = 0.0;  ///< effort integral of tau^T W tau on the planner's plan
-  double cost_after = 0.0;   ///< and on the optimised one (trajopt's EffortCost)
-  bool chosen = false;       ///< the plan in the file is the optimised one
-  /// \brief Success rate of the optimised plan's certificate; -1 when it was not certified.
-  double refined_success_rate = -1.0;
-  std::string message;  ///< why it failed or was not chosen, empty otherwise
 };
 
 /// \brief One point of the densely sampled trajectory (trajectory_sample.h).
@@ -155,8 +82,6 @@ struct Plan {
   PlanCell cell;  ///< the cell it was made for (written when recorded)
   std::vector<PlanSegment> segments;
   std::vector<PlanSample> samples;
-  OptimizationSummary optimization;  ///< written when optimization.ran
-  Certificate certificate;           ///< written when certificate.ran
   /// \brief Largest |(q, v)| difference between the planner's tree states and the plan's
   ///        re-simulation at the segment ends (not written to files).
   double path_mismatch = 0.0;
@@ -193,24 +118,9 @@ std::string filterPhaseRuns(const std::vector<std::pair<Phase, double>>& runs, d
 /// \brief "C", "P", "U"; throws InputError for anything else.
 Phase parsePhase(const std::string& text);
 
-/// \brief What plan files leave out.
-struct PlanFileOptions {
-  /// \brief Write wall-clock measurements (`planning_time`). Off, the same seed and
-  ///        settings give byte-identical files (plan-reorientation --reproducible);
-  ///        readPlanJson() then reads them as 0.
-  bool wall_clock = true;
-};
-
-/// \brief The JSON / CSV text of a plan. \throws std::runtime_error on a NaN.
-std::string planJsonText(const Plan& plan, const PlanFileOptions& options = {});
+/// \brief The CSV text of a plan. \throws std::runtime_error on a NaN.
 std::string planCsvText(const Plan& plan);
-/// \brief Write JSON / CSV atomically. \throws std::runtime_error on a NaN or I/O failure.
-void writePlanJson(const Plan& plan, const std::string& path, const PlanFileOptions& options = {});
+/// \brief Write the CSV atomically. \throws std::runtime_error on a NaN or I/O failure.
 void writePlanCsv(const Plan& plan, const std::string& path);
-/// \brief Load a plan file. \throws InputError naming the file and key when malformed.
-Plan readPlanJson(const std::string& path);
-/// \brief Parse plan JSON text; `label` names the source in messages.
-/// \throws InputError naming the label and key when malformed.
-Plan parsePlanJson(std::string_view text, const std::string& label);
 
 }  // namespace rbsf::plan

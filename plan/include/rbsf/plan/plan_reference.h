@@ -17,7 +17,7 @@ ReferenceTrajectory makeReference(const Plan& plan);
 /// \brief The sensing the plan's control law uses on a cell that senses `cell`: the cell's,
 ///        without the part's pose when the plan holds the part by the joints alone
 ///        (Plan::joint_feedback; its quasi-static slides are below what the part estimator
-///        resolves, docs/notes/2026-11-25-support-planner.md).
+///        resolves).
 Sensing lawSensing(const Sensing& cell, const Plan& plan);
 
 }  // namespace rbsf::plan

@@ -8,7 +8,7 @@
 /// the plant's least-norm forces, friction use and normal margins); the set kept is the one
 /// with the largest margin among those the joints alone hold (determined). Three sticking
 /// tips are often worse than two: the lateral squeeze no actuator steers loads a tilted tip
-/// towards its cone's edge (docs/notes/2026-11-27-execution-by-contact-forces.md).
+/// towards its cone's edge.
 ///
 /// The reference keeps the part at q0; each finger outside the set retracts by `lift` over
 /// `lift_time` (quintic, rest to rest) and stays there. Its roles (contact_roles.h): S for the

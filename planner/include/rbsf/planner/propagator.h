@@ -14,8 +14,8 @@
 /// contact creep from sticking into sliding, stick at the edge of its cone, or change mode
 /// in the middle of a held torque, the feedback's corrections of a few micrometres decide
 /// that contact's mode differently, and the part leaves the planned path (measured under
-/// joint tracking: a one-phase pivot fails within 0.1 s with a 10 um reference error;
-/// docs/notes/2026-11-22-refinement-under-joint-tracking.md). So a propagation step counts only if,
+/// joint tracking: a one-phase pivot fails within 0.1 s with a 10 um reference error).
+/// So a propagation step counts only if,
 /// after its first `settle_steps` simulator steps (where a new torque may switch modes at once),
 ///   - every contact keeps the mode (stick, slide, separated) it has then, and
 ///   - every sticking contact keeps |f_t| <= cone_margin mu_s f_n.

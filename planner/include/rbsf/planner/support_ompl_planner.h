@@ -29,7 +29,7 @@
 #include <ompl/base/Planner.h>
 #include <ompl/control/SpaceInformation.h>
 
-#include "rbsf/plan/refine_step.h"
+#include "rbsf/plan/plan_margins.h"
 #include "rbsf/planner/support_planner.h"
 
 namespace rbsf::planner {

@@ -26,7 +26,7 @@
 
 #include "rbsf/dynamics/feedback_schedule.h"
 #include "rbsf/plan/plan.h"
-#include "rbsf/plan/refine_step.h"
+#include "rbsf/plan/plan_margins.h"
 #include "rbsf/planner/pivot_turn_search.h"
 #include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/support_trajectory.h"

@@ -31,8 +31,7 @@ namespace rbsf::trajopt {
 /// leave every position and contact constraint unchanged. Solutions used that freedom:
 /// the held tangential force of a pivot alternated +52 / -46 / +66 N where the contact
 /// problem at the knots gives 5-12 N, so cones were checked on forces the simulator never
-/// applies (docs/notes/2026-11-22-refinement-under-joint-tracking.md,
-/// "Velocity-Verlet collocation").
+/// applies.
 ///
 /// Jacobian: forward-mode AutoDiff over the interval's two knot blocks and T_j. Its
 /// structure is the set of entries that are non-zero at a generic (random) point: the

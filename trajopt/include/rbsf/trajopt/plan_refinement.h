@@ -1,20 +1,12 @@
 #pragma once
 /// \file
-/// \brief The optimisation step of plan-reorientation and of the controller facade:
-///        optimise an exact plan, certify the planner's plan and the optimised one
-///        (plan/certificate.h), and keep the one with the better certificate.
+/// \brief The optimiser's candidates for an exact plan: the refinements the pipeline
+///        certifies and chooses between (planner/refine_and_certify.h).
 ///
-/// The order: the planner's plan is certified; the optimiser refines it and, on success,
-/// the refinement is certified; when that refinement is not certified, the optimiser runs
-/// once more with OptimizerSettings::min_slip_rate = retry_min_slip_rate (sliding contacts
-/// kept clearly sliding; when the first solve had that floor already, as a support plan's
-/// does, with none) and that refinement is certified too. Of the refinements the
-/// better certificate wins (plan::betterCertificate: certified, then the higher lower
-/// confidence bound of the success rate, then the smaller final error of its worst trial;
-/// the first on a tie). It is written instead of the planner's plan when its certificate is
-/// at least as good on the verdict and on the bound (atLeastAsGood): certified if the
-/// planner's is, and a lower bound at least the planner's. The refinement is chosen on a
-/// tie: it carries the plan with less effort.
+/// The first candidate is the plan optimised with the refiner's settings; the second, the
+/// retry, is asked for when the first is not certified: the same solve with
+/// OptimizerSettings::min_slip_rate = retry_min_slip_rate (sliding contacts kept clearly
+/// sliding; when the first solve had that floor already, with none).
 ///
 /// A support plan (plan::PlanMargins::support) is refined on its stated roles with the
 /// margins it was planned with, the cell's motion limits and a tube around its path
@@ -27,26 +19,10 @@
 #include <functional>
 #include <string>
 
-#include "rbsf/plan/certificate.h"
-#include "rbsf/plan/refine_step.h"
+#include "rbsf/plan/plan_margins.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 
 namespace rbsf::trajopt {
-
-/// \brief The plan to write and how it was chosen.
-struct RefineOutcome {
-  /// \brief The chosen plan with its `certificate` and the optimiser's `optimization`
-  ///        summary (of the chosen solve, else of the first; `chosen`, `message`).
-  plan::Plan plan;
-  bool refined = false;  ///< the chosen plan is an optimised one
-  /// \brief The solve summarised in plan.optimization converged (Ipopt's Solve_Succeeded or
-  ///        Solved_To_Acceptable_Level).
-  bool converged = false;
-  std::string reason;  ///< why no optimised plan was chosen; empty when one was
-  int attempts = 0;    ///< solves run (1, or 2 with the retry)
-  /// \brief The planner's plan's certificate (also when an optimised plan is chosen).
-  plan::Certificate planner_certificate;
-};
 
 /// \brief How a support plan is refined beyond its margins (supportOptimizerSettings).
 struct SupportRefinement {
@@ -64,14 +40,13 @@ struct SupportRefinement {
   double min_slip_rate = 0.0;
 };
 
-/// \brief How refinePlan tries and judges.
+/// \brief How the refiner makes its candidates.
 struct RefineSettings {
   /// \brief Retry with this minimum slip rate [1/s] when the first refinement is not
   ///        certified; when the first solve had this rate, the retry has none (0: no
   ///        retry).
   double retry_min_slip_rate = 0.1;
-  plan::CertificateSettings certificate;  ///< how each candidate is certified
-  SupportRefinement support;              ///< for support plans
+  SupportRefinement support;  ///< for support plans
 };
 
 /// \brief The optimiser's settings for a support plan planned with `margins`: `base` with
@@ -82,25 +57,42 @@ struct RefineSettings {
 OptimizerSettings supportOptimizerSettings(OptimizerSettings base, const plan::PlanMargins& margins,
                                            const SupportRefinement& support = {});
 
-/// \brief True when certificate `a` is at least as good as `b` on the verdict and on the
-///        bound: `a` ran, is certified when `b` is, and its lower bound is at least `b`'s.
-bool atLeastAsGood(const plan::Certificate& a, const plan::Certificate& b);
+/// \brief One optimised candidate of a plan, not yet certified.
+struct RefinementCandidate {
+  /// \brief The solve succeeded and its plan holds finite numbers only: `plan` is the
+  ///        refinement. false: `reason` says why, `plan` is empty.
+  bool usable = false;
+  bool converged = false;  ///< Ipopt converged (plan::converged(summary.status))
+  plan::Plan plan;
+  plan::OptimizationSummary summary;  ///< every number finite (a non-finite one written as 0)
+  std::string reason;                 ///< why it is not usable
+  std::string label;                  ///< "first solve" or "retry with min_slip_rate <rate>"
+};
 
-/// \brief Optimise, certify and choose (file comment). Every number in the summaries is
-///        finite. A cancel (OptimizerSettings::cancel) stops after the current step: the
-///        planner's plan is returned, certified if that had finished.
-/// \throws InputError when the plan does not fit the optimiser's cell.
-///        A support plan (margins.support) is refined with
-///        supportOptimizerSettings(optimizer.settings(), margins, settings.support).
-RefineOutcome refinePlan(const PlanOptimizer& optimizer, const plan::Plan& plan,
-                         const RefineSettings& settings = {},
-                         const plan::PlanMargins& margins = {});
+/// \brief The optimiser's candidates for the plans of one cell (file comment).
+class PlanRefiner {
+ public:
+  /// \throws InputError for bad optimiser settings.
+  PlanRefiner(const RbsfModel& model, OptimizerSettings settings, RefineSettings refine = {});
 
-/// \brief The pipeline's refinement step (plan/refine_step.h, planner/reorientation_pipeline.h):
-/// refinePlan with
-///        `optimizer` (kept by reference: it must outlive the step) and the pipeline's
-///        certificate settings; `report`, when given, sees every outcome.
-plan::RefineStep refinementStep(const PlanOptimizer& optimizer,
-                                std::function<void(const RefineOutcome&)> report = {});
+  /// \brief How many candidates a plan with `margins` may have: 1, or 2 with the retry.
+  int candidates(const plan::PlanMargins& margins) const;
+  /// \brief Candidate `k` (0: the first solve, 1: the retry) of `plan`. A support plan
+  ///        (margins.support) is solved with supportOptimizerSettings(settings(), margins,
+  ///        refine.support). \throws InputError when the plan does not fit the cell.
+  RefinementCandidate candidate(const plan::Plan& plan, const plan::PlanMargins& margins,
+                                int k) const;
+
+  const RbsfModel& model() const { return optimizer_.model(); }
+  const OptimizerSettings& settings() const { return optimizer_.settings(); }
+  /// \brief The cancel flag of the settings was raised.
+  bool cancelled() const;
+
+ private:
+  /// \brief The optimiser's settings of candidate `k` of a plan with `margins`.
+  OptimizerSettings settingsFor(const plan::PlanMargins& margins, int k) const;
+  PlanOptimizer optimizer_;  ///< checks the settings; solves the kinodynamic first candidate
+  RefineSettings refine_;
+};
 
 }  // namespace rbsf::trajopt

@@ -15,7 +15,7 @@
 
 #include "rbsf/trajopt/decision_variables.h"
 #include "rbsf/trajopt/nlp_element.h"
-#include "rbsf/trajopt/plan_optimizer.h"
+#include "rbsf/trajopt/optimizer_settings.h"
 #include "rbsf/trajopt/schedule.h"
 
 namespace rbsf::trajopt {

@@ -21,7 +21,7 @@
 ///     path); its exact solutions' plan is its own;
 ///   - exact solutions: `solution duration REAL` (seconds of motion of the plan), `path
 ///     mismatch REAL` (re-simulated plan against the planner's states);
-///   - with --optimize, exact solutions, the product's refinement (trajopt::refinePlan:
+///   - with --optimize, exact solutions, the product's refinement (planner::refineAndCertify:
 ///     optimise, certify the planner's plan and the refinement, keep the better):
 ///     `optimizer success BOOLEAN`, `optimizer status ENUM` (Ipopt's status, enum
 ///     "optimizer status" in the log), `optimizer iterations INTEGER`, `optimizer time REAL`,
