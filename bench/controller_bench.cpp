@@ -134,7 +134,10 @@ const LoadedRun& loadedRun() {
     if (!planner.solve(problem, r->plan)) std::abort();
     r->certificate = plan::certify(model, r->plan, plan::CertificateSettings{});
     std::string why;
-    if (!r->c->load(plan::PlanRecord{r->plan, {}, r->certificate}, &why)) std::abort();
+    plan::PlanRecord record;
+    record.plan = r->plan;
+    record.certificate = r->certificate;
+    if (!r->c->load(record, &why)) std::abort();
     plan::traceTrial(model, r->plan, plan::CertificateSettings{}, -1, r->trace);
     const Simulator sim(model, r->plan.simulator);
     SimulatorWorkspace ws(model.numFingers());

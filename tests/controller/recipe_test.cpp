@@ -167,7 +167,9 @@ TEST(ExecutionRecipe, RunsAPartFeedbackPlanAsItsTrialStepForStep) {
   ASSERT_FALSE(plan.joint_feedback);
   plan::CertificateSettings one;
   one.trials = 1;
-  plan::PlanRecord record{plan, {}, plan::certify(model, plan, one)};
+  plan::PlanRecord record;
+  record.plan = plan;
+  record.certificate = plan::certify(model, plan, one);
   record.certificate.certified = true;
   const std::string file =
       ::testing::TempDir() + "recipe_kinodynamic_" + std::to_string(getpid()) + ".json";
