@@ -19,7 +19,8 @@
 
 #include "bench_stats.h"
 #include "rbsf/bench/problem_suite.h"
-#include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/tools/certificate_options.h"

@@ -10,8 +10,9 @@
 #include <string>
 
 #include "law_support.h"
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
 
 namespace rbsf {

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "rbsf/controller/reorientation_controller.h"
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"

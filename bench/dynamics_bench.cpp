@@ -6,9 +6,9 @@
 
 #include "../tests/unit/test_support.h"
 
-#include "rbsf/dynamics/forward_dynamics.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/forward_dynamics.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf {
 namespace {

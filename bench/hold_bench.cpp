@@ -13,9 +13,10 @@
 #include <cstdio>
 #include <string>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/state_layout.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"

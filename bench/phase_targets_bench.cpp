@@ -6,8 +6,9 @@
 
 #include <string>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/planner/phase_targets.h"
 
 namespace rbsf {

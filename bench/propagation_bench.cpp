@@ -12,7 +12,8 @@
 
 #include <string>
 
-#include "rbsf/dynamics/holding.h"
+#include "rbsf/dynamics/core/holding.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/planner/reorientation_planner.h"
 
 namespace rbsf {

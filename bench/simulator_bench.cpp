@@ -9,12 +9,12 @@
 #include <cmath>
 #include <memory>
 
-#include "rbsf/dynamics/contact_force_qp.h"
-#include "rbsf/dynamics/control_law.h"
-#include "rbsf/dynamics/holding.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/reference_trajectory.h"
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/control/contact_force_qp.h"
+#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/control/reference_trajectory.h"
+#include "rbsf/dynamics/core/holding.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/simulator.h"
 
 namespace rbsf {
 namespace {

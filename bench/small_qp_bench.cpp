@@ -8,7 +8,7 @@
 
 #include <random>
 
-#include "rbsf/dynamics/small_qp.h"
+#include "rbsf/dynamics/core/small_qp.h"
 
 namespace rbsf {
 namespace {

@@ -20,7 +20,8 @@
 #include <vector>
 
 #include "bench_stats.h"
-#include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/planner/refine_and_certify.h"
 #include "rbsf/planner/support_planner.h"
 #include "rbsf/tools/tool_main.h"

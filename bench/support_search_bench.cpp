@@ -10,7 +10,8 @@
 #include <cmath>
 #include <string>
 
-#include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/planner/support_planner.h"
 #include "rbsf/planner/support_search.h"
 

@@ -25,7 +25,8 @@
 #include <vector>
 
 #include "bench_stats.h"
-#include "rbsf/dynamics/cell.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/planner/reorientation_pipeline.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/trajopt/plan_optimizer.h"

@@ -1,6 +1,6 @@
 // rbsf-controller-loop: a cell controller's 1 kHz loop around the library's facade
 // (rbsf/controller/reorientation_controller.h), with the hybrid simulator as the plant and
-// the cell's sensors simulated (rbsf/dynamics/sensor_model.h: noisy joints every tick, the
+// the cell's sensors simulated (rbsf/dynamics/control/sensor_model.h: noisy joints every tick, the
 // part's pose at the sensor's rate, late by its latency).
 //
 //   With --plan FILE the plan file is loaded instead (checked against the cell: a plan made
@@ -28,13 +28,13 @@
 #include <thread>
 
 #include "rbsf/controller/reorientation_controller.h"
-#include "rbsf/dynamics/control_law.h"
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/holding.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/sensor_model.h"
-#include "rbsf/dynamics/simulator.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/control/sensor_model.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/holding.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/simulator.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/plan_file.h"
 #include "rbsf/plan/plan_fit.h"
 #include "rbsf/tools/certificate_options.h"

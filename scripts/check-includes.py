@@ -25,7 +25,9 @@ import tempfile
 # Module -> its folder in the tree, in dependency order: a module may include only the
 # modules listed before it (and not every one of those: ALLOWED says which).
 MODULES = {
-    "dynamics": "dynamics",
+    "dynamics/core": "dynamics",
+    "dynamics/control": "dynamics",
+    "dynamics/io": "dynamics",
     "plan": "plan",
     "trajopt": "trajopt",
     "planner": "planner",
@@ -33,16 +35,28 @@ MODULES = {
     "tools": "tools/common",
     "bench": "tools/bench",
 }
+DYNAMICS = {"dynamics/core", "dynamics/control", "dynamics/io"}
 ALLOWED = {
-    "dynamics": set(),
-    "plan": {"dynamics"},
-    "trajopt": {"dynamics", "plan"},
-    "planner": {"dynamics", "plan", "trajopt"},
-    "controller": {"dynamics", "plan", "trajopt", "planner"},
-    "tools": {"dynamics", "plan", "trajopt", "planner"},
-    "bench": {"dynamics", "plan", "trajopt", "planner", "tools"},
+    "dynamics/core": set(),
+    "dynamics/control": {"dynamics/core"},
+    "dynamics/io": {"dynamics/core"},
+    "plan": DYNAMICS,
+    "trajopt": DYNAMICS | {"plan"},
+    "planner": DYNAMICS | {"plan", "trajopt"},
+    "controller": DYNAMICS | {"plan", "trajopt", "planner"},
+    "tools": DYNAMICS | {"plan", "trajopt", "planner"},
+    "bench": DYNAMICS | {"plan", "trajopt", "planner", "tools"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.M)
+
+
+def part_of(module, path):
+    """A module in parts ("dynamics/core"): whether `path` lies in the part's subfolder of
+    include/rbsf/<x>/ or src/."""
+    if "/" not in module:
+        return True
+    part = module.split("/", 1)[1]
+    return re.search(r"/(include/rbsf/[^/]+|src)/" + re.escape(part) + "/", path) is not None
 
 
 def sources(root):
@@ -52,8 +66,9 @@ def sources(root):
         for dirpath, dirnames, filenames in os.walk(base):
             dirnames[:] = [d for d in dirnames if d not in ("build", "CMakeFiles")]
             for name in sorted(filenames):
-                if name.endswith((".h", ".cpp")):
-                    yield module, os.path.join(dirpath, name)
+                path = os.path.join(dirpath, name)
+                if name.endswith((".h", ".cpp")) and part_of(module, path):
+                    yield module, path
 
 
 def unit_of(module, path):
@@ -73,12 +88,10 @@ def graph(root):
     """unit -> {unit: (file, include)} and the modules' illegal includes."""
     headers = {}  # "rbsf/<x>/<path>.h" -> (module, unit)
     files = list(sources(root))
-    prefix_of = {}
     for module, path in files:
         m = re.search(r"/include/(rbsf/[^/]+/.+)$", path)
         if m:
             headers[m.group(1)] = (module, unit_of(module, path))
-            prefix_of[m.group(1).split("/")[1]] = module
     edges, illegal = {}, []
     for module, path in files:
         unit = unit_of(module, path)
@@ -167,7 +180,7 @@ def self_test():
     here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     ok = True
     with tempfile.TemporaryDirectory() as tmp:
-        for folder in MODULES.values():
+        for folder in sorted(set(MODULES.values())):
             shutil.copytree(os.path.join(here, folder), os.path.join(tmp, folder),
                             ignore=shutil.ignore_patterns("CMakeFiles"))
         if check(tmp, quiet=True) != 0:
@@ -190,11 +203,11 @@ def self_test():
         with open(plan_h, "w") as f:
             f.write(text)
         # A backwards include across modules: the dynamics including the planner.
-        model_h = os.path.join(tmp, "dynamics/include/rbsf/dynamics/model.h")
+        model_h = os.path.join(tmp, "dynamics/include/rbsf/dynamics/core/model.h")
         with open(model_h, "a") as f:
             f.write('\n#include "rbsf/planner/planner_settings.h"\n')
         result = subprocess.run([sys.executable, __file__, tmp], capture_output=True, text=True)
-        if result.returncode == 0 or "dynamics may not include planner" not in result.stdout:
+        if result.returncode == 0 or "dynamics/core may not include planner" not in result.stdout:
             print("self-test: dynamics including the planner was not found")
             ok = False
     print("check-includes self-test: " + ("both planted faults found" if ok else "FAILED"))

@@ -1,4 +1,5 @@
 #include "rbsf/controller/reorientation_controller.h"
+#include "rbsf/dynamics/io/cell_file.h"
 
 #include <algorithm>
 #include <exception>
@@ -7,8 +8,8 @@
 #include <utility>
 #include <variant>
 
-#include "rbsf/dynamics/control_law.h"
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/core/errors.h"
 #include "rbsf/plan/plan_fit.h"
 #include "rbsf/plan/plan_reference.h"
 #include "snapshot_slots.h"

@@ -10,7 +10,7 @@
 #include <thread>
 #include <tuple>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 #include "rbsf/plan/confidence.h"
 #include "rbsf/plan/plan_reference.h"
 

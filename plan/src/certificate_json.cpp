@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 #include "rbsf/plan/confidence.h"
 
 namespace rbsf::plan {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 
 namespace rbsf::plan {
 

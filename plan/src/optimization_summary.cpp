@@ -1,6 +1,6 @@
 #include "rbsf/plan/optimization_summary.h"
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 
 namespace rbsf::plan {
 

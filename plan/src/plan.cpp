@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "rbsf/dynamics/atomic_file.h"
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/rollout.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/rollout.h"
+#include "rbsf/dynamics/io/atomic_file.h"
 
 namespace rbsf::plan {
 

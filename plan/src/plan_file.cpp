@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "certificate_json.h"
-#include "rbsf/dynamics/atomic_file.h"
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/input_file.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/atomic_file.h"
+#include "rbsf/dynamics/io/input_file.h"
 
 namespace rbsf::plan {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "rbsf/dynamics/model_data.h"
+#include "rbsf/dynamics/core/model_data.h"
 
 namespace rbsf::plan {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "rbsf/dynamics/contact_balance.h"
+#include "rbsf/dynamics/core/contact_balance.h"
 #include "rbsf/plan/plan.h"
 
 namespace rbsf::plan {

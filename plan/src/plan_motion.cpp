@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/plan.h"
 
 namespace rbsf::plan {

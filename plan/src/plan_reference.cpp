@@ -1,6 +1,6 @@
 #include "rbsf/plan/plan_reference.h"
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 
 namespace rbsf::plan {
 

@@ -7,12 +7,12 @@
 #include <memory>
 #include <random>
 
-#include "rbsf/dynamics/control_law.h"
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/rollout.h"
-#include "rbsf/dynamics/sensor_model.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/control/sensor_model.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/rollout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf::plan {
 

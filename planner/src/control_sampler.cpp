@@ -2,7 +2,7 @@
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf::planner {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf::planner {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/planner/support_trajectory.h"
 
 namespace rbsf::planner {

@@ -3,8 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 
-#include "rbsf/dynamics/small_solvers.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/small_solvers.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf::planner {
 namespace {

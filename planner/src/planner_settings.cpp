@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 
 namespace rbsf::planner {
 

@@ -6,7 +6,7 @@
 #include <ompl/control/planners/rrt/RRT.h>
 #include <ompl/control/planners/sst/SST.h>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 
 namespace rbsf::planner {
 

@@ -6,9 +6,9 @@
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/rollout.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/rollout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf::planner {
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <utility>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/planner/support_planner.h"
 #include "rbsf/trajopt/plan_refinement.h"

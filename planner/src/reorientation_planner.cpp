@@ -1,6 +1,6 @@
 #include "rbsf/planner/reorientation_planner.h"
 
-#include "rbsf/dynamics/feedback_schedule.h"
+#include "rbsf/dynamics/control/feedback_schedule.h"
 
 #include <algorithm>
 #include <atomic>
@@ -15,9 +15,9 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/holding.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/holding.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/planner/goal.h"
 #include "rbsf/planner/projection.h"
 #include "rbsf/planner/stop_at_goal_planner.h"

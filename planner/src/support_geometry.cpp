@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf::planner {
 namespace {

@@ -10,7 +10,7 @@
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 #include <ompl/util/Console.h>
 
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/planner/goal.h"
 #include "rbsf/planner/propagator.h"
 #include "rbsf/planner/state_space.h"

@@ -7,9 +7,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "rbsf/dynamics/control_law.h"
-#include "rbsf/dynamics/rollout.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/core/rollout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/plan_reference.h"
 
 namespace rbsf::planner {

@@ -9,12 +9,12 @@
 
 #include "../unit/test_support.h"
 #include "malloc_counter.h"
-#include "rbsf/dynamics/control_law.h"
-#include "rbsf/dynamics/forward_dynamics.h"
-#include "rbsf/dynamics/holding.h"
-#include "rbsf/dynamics/simulator.h"
-#include "rbsf/dynamics/small_qp.h"
-#include "rbsf/dynamics/small_solvers.h"
+#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/core/forward_dynamics.h"
+#include "rbsf/dynamics/core/holding.h"
+#include "rbsf/dynamics/core/simulator.h"
+#include "rbsf/dynamics/core/small_qp.h"
+#include "rbsf/dynamics/core/small_solvers.h"
 
 namespace rbsf {
 namespace {

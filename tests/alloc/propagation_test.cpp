@@ -7,8 +7,9 @@
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
 #include "malloc_counter.h"
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/holding.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/holding.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/planner/reorientation_planner.h"
 
 namespace rbsf {

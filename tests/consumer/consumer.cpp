@@ -13,7 +13,7 @@
 #include <thread>
 
 #include <rbsf/controller/reorientation_controller.h>
-#include <rbsf/dynamics/state_layout.h>
+#include <rbsf/dynamics/core/state_layout.h>
 #include <rbsf/plan/certificate_report.h>
 #include <rbsf/trajopt/plan_optimizer.h>
 

@@ -3,12 +3,13 @@
 // trial without draws (the plan's law, exact sensors, the nominal plant at 1 kHz). Exit
 // status 0 when that trial reaches the goal; 1 when it does not; 2 for a plan of another
 // cell or a file that cannot be read.
+#include <rbsf/dynamics/io/cell_file.h>
 #include <cstdio>
 #include <exception>
 #include <vector>
 
-#include <rbsf/dynamics/cell.h>
-#include <rbsf/dynamics/model.h>
+#include <rbsf/dynamics/core/cell.h>
+#include <rbsf/dynamics/core/model.h>
 #include <rbsf/plan/certificate.h>
 #include <rbsf/plan/plan_file.h>
 #include <rbsf/plan/plan_fit.h>

@@ -13,8 +13,8 @@
 
 #include "../../controller/src/snapshot_slots.h"
 #include "rbsf/controller/reorientation_controller.h"
-#include "rbsf/dynamics/control_law.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/plan_reference.h"
 
 namespace rbsf::controller {

@@ -11,10 +11,11 @@
 #include <vector>
 
 #include "rbsf/controller/reorientation_controller.h"
-#include "rbsf/dynamics/control_law.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/simulator.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/simulator.h"
+#include "rbsf/dynamics/core/state_layout.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_fit.h"
 #include "rbsf/plan/plan_reference.h"

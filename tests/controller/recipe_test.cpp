@@ -16,8 +16,9 @@
 #include <vector>
 
 #include "rbsf/controller/reorientation_controller.h"
-#include "rbsf/dynamics/sensor_model.h"
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/control/sensor_model.h"
+#include "rbsf/dynamics/core/simulator.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"

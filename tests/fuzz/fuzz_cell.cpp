@@ -5,9 +5,10 @@
 #include <cstdint>
 #include <string>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/model.h"
+#include "rbsf/dynamics/io/cell_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

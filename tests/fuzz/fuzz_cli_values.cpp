@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 #include "rbsf/tools/cli_values.h"
 
 namespace {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 #include "rbsf/tools/controls_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

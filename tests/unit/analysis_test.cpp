@@ -3,9 +3,9 @@
 
 #include <Eigen/SVD>
 
-#include "rbsf/dynamics/forward_dynamics.h"
-#include "rbsf/dynamics/holding.h"
-#include "rbsf/dynamics/phase.h"
+#include "rbsf/dynamics/core/forward_dynamics.h"
+#include "rbsf/dynamics/core/holding.h"
+#include "rbsf/dynamics/core/phase.h"
 #include "test_support.h"
 
 namespace rbsf {

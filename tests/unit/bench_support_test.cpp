@@ -12,7 +12,7 @@
 #include "rbsf/bench/problem_suite.h"
 #include "rbsf/bench/run_list.h"
 #include "rbsf/bench/summary.h"
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 #include "rbsf/planner/goal.h"
 
 namespace rbsf::bench {

@@ -9,8 +9,9 @@
 
 #include <gtest/gtest.h>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/cell_file.h"
 
 namespace rbsf {
 namespace {

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "law_support.h"
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/confidence.h"
 #include "rbsf/plan/plan_file.h"

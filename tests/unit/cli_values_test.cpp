@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf::tools {
 namespace {

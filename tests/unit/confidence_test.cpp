@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 #include "rbsf/plan/confidence.h"
 
 namespace rbsf::plan {

@@ -11,10 +11,10 @@
 #include <random>
 #include <vector>
 
-#include "rbsf/dynamics/contact_balance.h"
-#include "rbsf/dynamics/forward_dynamics.h"
-#include "rbsf/dynamics/holding.h"
-#include "rbsf/dynamics/mode_dynamics.h"
+#include "rbsf/dynamics/core/contact_balance.h"
+#include "rbsf/dynamics/core/forward_dynamics.h"
+#include "rbsf/dynamics/core/holding.h"
+#include "rbsf/dynamics/core/mode_dynamics.h"
 #include "test_support.h"
 
 namespace rbsf {

@@ -10,9 +10,10 @@
 #include <random>
 
 #include "law_support.h"
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/sensor_model.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/control/sensor_model.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/state_layout.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"
 #include "rbsf/planner/hold_plan.h"

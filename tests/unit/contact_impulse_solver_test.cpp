@@ -6,8 +6,8 @@
 #include <Eigen/SVD>
 #include <random>
 
-#include "rbsf/dynamics/contact_impulse_solver.h"
-#include "rbsf/dynamics/holding.h"
+#include "rbsf/dynamics/core/contact_impulse_solver.h"
+#include "rbsf/dynamics/core/holding.h"
 #include "test_support.h"
 
 namespace rbsf {

@@ -9,8 +9,8 @@
 #include <cmath>
 
 #include "law_support.h"
-#include "rbsf/dynamics/sensor_model.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/control/sensor_model.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/plan_reference.h"
 
 namespace rbsf {

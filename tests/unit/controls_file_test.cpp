@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "rbsf/dynamics/atomic_file.h"
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/atomic_file.h"
 #include "rbsf/tools/controls_file.h"
 #include "rbsf/tools/trajectory_writer.h"
 

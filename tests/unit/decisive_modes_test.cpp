@@ -9,8 +9,9 @@
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "sim_test_support.h"

@@ -3,7 +3,7 @@
 
 #include <Eigen/Cholesky>
 
-#include "rbsf/dynamics/forward_dynamics.h"
+#include "rbsf/dynamics/core/forward_dynamics.h"
 #include "test_support.h"
 
 namespace rbsf {

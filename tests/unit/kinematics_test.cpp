@@ -2,8 +2,8 @@
 // tangential slip map, J the fingertip Jacobian, h_n and h_t the velocity products.
 #include <gtest/gtest.h>
 
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/model.h"
 #include "test_support.h"
 
 namespace rbsf {

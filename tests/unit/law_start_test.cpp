@@ -10,10 +10,10 @@
 #include <cmath>
 #include <memory>
 
-#include "rbsf/dynamics/control_law.h"
-#include "rbsf/dynamics/sensor_model.h"
-#include "rbsf/dynamics/simulator.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/control/sensor_model.h"
+#include "rbsf/dynamics/core/simulator.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"
 #include "rbsf/planner/support_planner.h"

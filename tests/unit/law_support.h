@@ -3,10 +3,10 @@
 
 #include <cmath>
 
-#include "rbsf/dynamics/control_law.h"
-#include "rbsf/dynamics/holding.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/rollout.h"
+#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/core/holding.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/rollout.h"
 #include "rbsf/plan/plan.h"
 #include "rbsf/planner/hold_plan.h"
 #include "test_support.h"

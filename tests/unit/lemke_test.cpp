@@ -7,8 +7,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "rbsf/dynamics/lemke.h"
-#include "rbsf/dynamics/small_solvers.h"
+#include "rbsf/dynamics/core/lemke.h"
+#include "rbsf/dynamics/core/small_solvers.h"
 
 namespace rbsf {
 namespace {

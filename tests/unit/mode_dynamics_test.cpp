@@ -6,8 +6,8 @@
 
 #include <random>
 
-#include "rbsf/dynamics/forward_dynamics.h"
-#include "rbsf/dynamics/mode_dynamics.h"
+#include "rbsf/dynamics/core/forward_dynamics.h"
+#include "rbsf/dynamics/core/mode_dynamics.h"
 #include "test_support.h"
 
 namespace rbsf {

@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "rbsf/dynamics/atomic_file.h"
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/atomic_file.h"
 #include "rbsf/plan/plan_file.h"
 #include "rbsf/tools/interrupt.h"
 

@@ -8,8 +8,8 @@
 
 #include <Eigen/SVD>
 
-#include "rbsf/dynamics/forward_dynamics.h"
-#include "rbsf/dynamics/stick_dynamics.h"
+#include "rbsf/dynamics/core/forward_dynamics.h"
+#include "rbsf/dynamics/core/stick_dynamics.h"
 #include "rbsf/planner/phase_targets.h"
 #include "test_support.h"
 

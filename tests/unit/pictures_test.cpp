@@ -9,11 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/holding.h"
-#include "rbsf/dynamics/model_data.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/simulator.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/holding.h"
+#include "rbsf/dynamics/core/model_data.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/simulator.h"
+#include "rbsf/dynamics/core/state_layout.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/tools/html_report.h"
 #include "rbsf/tools/svg_animation.h"
 #include "rbsf/tools/svg_time_plot.h"

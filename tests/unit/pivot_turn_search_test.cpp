@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/state_layout.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/planner/pivot_turn_search.h"
 #include "rbsf/planner/support_planner.h"
 #include "support_path_checks.h"

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "law_support.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_holding.h"
 #include "rbsf/plan/plan_motion.h"

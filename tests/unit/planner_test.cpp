@@ -10,9 +10,10 @@
 #include <string>
 #include <utility>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/state_layout.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/plan_file.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/planner/goal.h"

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/reference_trajectory.h"
+#include "rbsf/dynamics/control/reference_trajectory.h"
+#include "rbsf/dynamics/core/errors.h"
 
 namespace rbsf {
 namespace {

@@ -10,8 +10,9 @@
 #include <variant>
 #include <vector>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/confidence.h"
 #include "rbsf/plan/plan_holding.h"
 #include "rbsf/planner/reorientation_pipeline.h"

@@ -2,8 +2,9 @@
 // part (ellipse, COM shifted by a third of the semi-major axis, three fingers).
 #include <gtest/gtest.h>
 
-#include "rbsf/dynamics/forward_dynamics.h"
-#include "rbsf/dynamics/rotation_analysis.h"
+#include "rbsf/dynamics/core/forward_dynamics.h"
+#include "rbsf/dynamics/core/rotation_analysis.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "test_support.h"
 
 namespace rbsf {

@@ -1,4 +1,4 @@
-#include "rbsf/dynamics/shape.h"
+#include "rbsf/dynamics/core/shape.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 
 namespace rbsf {
 namespace {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/holding.h"
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/core/holding.h"
+#include "rbsf/dynamics/core/simulator.h"
 #include "test_support.h"
 
 namespace rbsf::test {

@@ -8,7 +8,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "sim_test_support.h"
 
 namespace rbsf {

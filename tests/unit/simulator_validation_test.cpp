@@ -5,8 +5,8 @@
 #include <Eigen/LU>
 #include <cmath>
 
-#include "rbsf/dynamics/forward_dynamics.h"
-#include "rbsf/dynamics/stick_dynamics.h"
+#include "rbsf/dynamics/core/forward_dynamics.h"
+#include "rbsf/dynamics/core/stick_dynamics.h"
 #include "sim_test_support.h"
 
 namespace rbsf {

@@ -2,7 +2,7 @@
 // agreement with brute-force active-set enumeration and with leastNormInPolyhedron,
 // infeasibility, degenerate constraint sets, the status values and the size checks.
 
-#include "rbsf/dynamics/small_qp.h"
+#include "rbsf/dynamics/core/small_qp.h"
 
 #include <cmath>
 #include <cstring>
@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "rbsf/dynamics/small_solvers.h"
+#include "rbsf/dynamics/core/small_solvers.h"
 #include "test_support.h"
 
 namespace rbsf {

@@ -1,6 +1,6 @@
 // Tests of the small dense solvers against brute-force enumeration on random problems.
 
-#include "rbsf/dynamics/small_solvers.h"
+#include "rbsf/dynamics/core/small_solvers.h"
 
 #include <atomic>
 #include <bit>

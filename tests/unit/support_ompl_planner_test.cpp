@@ -11,8 +11,9 @@
 #include <ompl/control/PathControl.h>
 #include <ompl/util/Console.h>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/state_layout.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/planner/reorientation_planner.h"
 #include "rbsf/planner/support_ompl_planner.h"
 

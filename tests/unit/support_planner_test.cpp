@@ -11,8 +11,9 @@
 #include <set>
 #include <vector>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/state_layout.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/plan_holding.h"
 #include "rbsf/plan/plan_motion.h"
 #include "rbsf/planner/support_planner.h"

@@ -6,10 +6,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/model.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/model.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf::test {
 

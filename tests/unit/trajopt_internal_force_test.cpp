@@ -6,9 +6,9 @@
 #include <array>
 #include <cmath>
 
-#include "rbsf/dynamics/contact_balance.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/core/contact_balance.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/trajopt/internal_force_constraint.h"
 #include "trajopt_support.h"
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/trajopt/schedule.h"
 #include "rbsf/trajopt/trajectory_problem.h"
 #include "trajopt_support.h"

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 #include "rbsf/planner/refine_and_certify.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 #include "rbsf/trajopt/plan_refinement.h"

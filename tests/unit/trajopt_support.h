@@ -4,11 +4,12 @@
 #include <cmath>
 #include <string>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/contact_balance.h"
-#include "rbsf/dynamics/contact_roles.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/contact_balance.h"
+#include "rbsf/dynamics/core/contact_roles.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/simulator.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/plan.h"
 #include "rbsf/planner/reorientation_planner.h"
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "law_support.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/confidence.h"
 #include "rbsf/plan/plan_motion.h"

@@ -9,9 +9,10 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/state_analysis.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/state_analysis.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
 

@@ -5,8 +5,8 @@
 #include <set>
 #include <sstream>
 
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/input_file.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/input_file.h"
 
 namespace rbsf::bench {
 

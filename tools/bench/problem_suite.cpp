@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <set>
 
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/input_file.h"
-#include "rbsf/dynamics/yaml_reader.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/input_file.h"
+#include "rbsf/dynamics/io/yaml_reader.h"
 #include "rbsf/tools/cli_values.h"
 
 namespace rbsf::bench {

@@ -29,8 +29,9 @@
 #include "rbsf/bench/run_list.h"
 #include "rbsf/bench/single_run.h"
 #include "rbsf/bench/summary.h"
-#include "rbsf/dynamics/atomic_file.h"
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/atomic_file.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
 

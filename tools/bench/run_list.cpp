@@ -2,7 +2,7 @@
 
 #include <charconv>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 
 namespace rbsf::bench {
 

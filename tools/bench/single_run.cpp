@@ -12,7 +12,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "rbsf/bench/benchmark_log.h"
-#include "rbsf/dynamics/atomic_file.h"
+#include "rbsf/dynamics/io/atomic_file.h"
 #include "rbsf/planner/refine_and_certify.h"
 #include "rbsf/planner/support_ompl_planner.h"
 #include "rbsf/trajopt/plan_optimizer.h"

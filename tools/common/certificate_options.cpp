@@ -1,6 +1,6 @@
 #include "rbsf/tools/certificate_options.h"
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 #include "rbsf/tools/cli_values.h"
 
 namespace rbsf::tools {

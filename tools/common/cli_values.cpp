@@ -9,8 +9,8 @@
 #include <numbers>
 #include <system_error>
 
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf::tools {
 namespace {

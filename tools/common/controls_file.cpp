@@ -3,8 +3,8 @@
 
 #include "rbsf/tools/controls_file.h"
 
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/input_file.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/input_file.h"
 #include "rbsf/tools/cli_values.h"
 
 namespace rbsf::tools {

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/tools/svg_format.h"
 #include "rbsf/tools/svg_time_plot.h"
 

@@ -8,8 +8,8 @@
 #include <climits>
 #include <cstdlib>
 
-#include "rbsf/dynamics/atomic_file.h"
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/atomic_file.h"
 
 namespace rbsf::tools {
 

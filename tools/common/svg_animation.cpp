@@ -7,8 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "rbsf/dynamics/model_data.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/model_data.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/tools/svg_format.h"
 #include "rbsf/tools/svg_time_plot.h"
 

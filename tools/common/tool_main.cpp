@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 
 namespace rbsf::tools {
 

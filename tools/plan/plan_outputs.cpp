@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <utility>
 
-#include "rbsf/dynamics/atomic_file.h"
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/state_layout.h"
+#include "rbsf/dynamics/io/atomic_file.h"
 #include "rbsf/planner/goal.h"
 #include "rbsf/tools/html_report.h"
 #include "rbsf/tools/run_files.h"

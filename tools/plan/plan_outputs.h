@@ -5,7 +5,7 @@
 ///
 /// Paths are checked before the search (a missing or read-only directory is bad input
 /// and costs no planning time). At the end every text is formatted first and then each
-/// file is written to a temporary name and renamed (rbsf/dynamics/atomic_file.h): a file
+/// file is written to a temporary name and renamed (rbsf/dynamics/io/atomic_file.h): a file
 /// is complete or absent, and a plan holding a NaN writes none. With `reproducible`,
 /// wall-clock fields (planning_time) are left out, so the same seed gives byte-identical
 /// files.
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/plan/plan_file.h"
 #include "rbsf/tools/html_report.h"
 #include "rbsf/tools/trajectory_writer.h"

@@ -26,7 +26,8 @@
 #include <vector>
 
 #include "plan_outputs.h"
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/planner/reorientation_pipeline.h"
 #include "rbsf/tools/certificate_options.h"

@@ -14,9 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/atomic_file.h"
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/trajectory_sample.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/trajectory_sample.h"
+#include "rbsf/dynamics/io/atomic_file.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_file.h"
 #include "rbsf/tools/certificate_options.h"

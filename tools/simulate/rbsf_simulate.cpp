@@ -1,5 +1,5 @@
 // rbsf-simulate: forward simulation of a cell under a piecewise-constant input schedule,
-// through stick, slip, separation and renewed contact (rbsf/dynamics/simulator.h). The part
+// through stick, slip, separation and renewed contact (rbsf/dynamics/core/simulator.h). The part
 // starts at rest on the fingers placed by the placement rule.
 //
 // Exit status: 0 success; 2 bad input (cell, start pose, controls file, option value,
@@ -15,11 +15,12 @@
 #include <utility>
 #include <vector>
 
-#include "rbsf/dynamics/atomic_file.h"
-#include "rbsf/dynamics/errors.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/rollout.h"
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/core/errors.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/rollout.h"
+#include "rbsf/dynamics/core/simulator.h"
+#include "rbsf/dynamics/io/atomic_file.h"
+#include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/controls_file.h"
 #include "rbsf/tools/interrupt.h"

@@ -7,7 +7,7 @@
 #include <IpIpoptApplication.hpp>
 
 #include "ipopt_adapter.h"
-#include "rbsf/dynamics/errors.h"
+#include "rbsf/dynamics/core/errors.h"
 #include "rbsf/trajopt/trajectory_problem.h"
 
 namespace rbsf::trajopt {

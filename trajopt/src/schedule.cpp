@@ -1,6 +1,6 @@
 #include "rbsf/trajopt/schedule.h"
 
-#include "rbsf/dynamics/rollout.h"
+#include "rbsf/dynamics/core/rollout.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 /// \file
 /// \brief The library's face for a cell controller: load a cell, plan and certify a
 ///        reorientation on a worker thread, and execute the plan from a real-time loop with
-///        the control law (rbsf/dynamics/control_law.h).
+///        the control law (rbsf/dynamics/control/control_law.h).
 ///
 /// Threads. plan() starts a worker thread and returns at once; the worker runs the
 /// pipeline (planner/reorientation_pipeline.h: the planners and, when asked, the optimiser),
@@ -37,11 +37,11 @@
 #include <memory>
 #include <string>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/feedback_schedule.h"
-#include "rbsf/dynamics/model.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/reference_trajectory.h"
+#include "rbsf/dynamics/control/feedback_schedule.h"
+#include "rbsf/dynamics/control/reference_trajectory.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/model.h"
+#include "rbsf/dynamics/core/placement.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_file.h"
 #include "rbsf/planner/planner_settings.h"

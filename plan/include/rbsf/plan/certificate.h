@@ -50,8 +50,8 @@
 #include <functional>
 #include <vector>
 
-#include "rbsf/dynamics/feedback_schedule.h"
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/control/feedback_schedule.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/plan/certificate_report.h"
 #include "rbsf/plan/plan.h"
 #include "rbsf/plan/trial.h"

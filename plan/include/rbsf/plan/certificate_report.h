@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "rbsf/dynamics/sensing.h"
+#include "rbsf/dynamics/core/sensing.h"
 #include "rbsf/plan/plan_holding.h"
 #include "rbsf/plan/plan_motion.h"
 

@@ -13,12 +13,12 @@
 #include <string_view>
 #include <vector>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/contact_roles.h"
-#include "rbsf/dynamics/phase.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/simulator.h"
-#include "rbsf/dynamics/trajectory_sample.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/contact_roles.h"
+#include "rbsf/dynamics/core/phase.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/simulator.h"
+#include "rbsf/dynamics/core/trajectory_sample.h"
 
 namespace rbsf::plan {
 

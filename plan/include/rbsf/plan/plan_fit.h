@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/plan/plan.h"
 
 namespace rbsf::plan {

@@ -14,7 +14,7 @@
 
 #include <string>
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 
 namespace rbsf::plan {
 

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "rbsf/dynamics/motion_limits.h"
+#include "rbsf/dynamics/core/motion_limits.h"
 
 namespace rbsf::plan {
 

@@ -2,8 +2,8 @@
 /// \file
 /// \brief The reference trajectory of a plan, for tracking and replay.
 
-#include "rbsf/dynamics/reference_trajectory.h"
-#include "rbsf/dynamics/sensing.h"
+#include "rbsf/dynamics/control/reference_trajectory.h"
+#include "rbsf/dynamics/core/sensing.h"
 #include "rbsf/plan/plan.h"
 
 namespace rbsf::plan {

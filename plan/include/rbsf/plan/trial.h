@@ -32,9 +32,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/feedback_schedule.h"
-#include "rbsf/dynamics/trajectory_sample.h"
+#include "rbsf/dynamics/control/feedback_schedule.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/trajectory_sample.h"
 #include "rbsf/plan/certificate_report.h"
 #include "rbsf/plan/plan.h"
 

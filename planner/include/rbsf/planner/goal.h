@@ -14,7 +14,7 @@
 
 #include <ompl/base/goals/GoalRegion.h>
 
-#include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/core/placement.h"
 #include "rbsf/planner/validity.h"
 
 namespace rbsf::planner {

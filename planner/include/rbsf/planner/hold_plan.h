@@ -16,8 +16,8 @@
 /// The plan is that reference run once closed loop on the nominal cell
 /// (support_trajectory.h closedLoopPlan): exact, held by the joints alone.
 
-#include "rbsf/dynamics/contact_balance.h"
-#include "rbsf/dynamics/feedback_schedule.h"
+#include "rbsf/dynamics/control/feedback_schedule.h"
+#include "rbsf/dynamics/core/contact_balance.h"
 #include "rbsf/plan/plan.h"
 
 namespace rbsf::planner {

@@ -25,7 +25,7 @@
 /// The simulator decides what really happens with that tau (a U target whose tip motion
 /// needs less friction than the cones allow keeps sticking, for example).
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 
 namespace rbsf::planner {
 

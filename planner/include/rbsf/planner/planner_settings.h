@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/simulator.h"
 
 namespace rbsf::planner {
 

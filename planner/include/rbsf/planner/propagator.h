@@ -33,8 +33,8 @@
 
 #include <ompl/control/StatePropagator.h>
 
-#include "rbsf/dynamics/motion_limits.h"
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/core/motion_limits.h"
+#include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/state_space.h"
 

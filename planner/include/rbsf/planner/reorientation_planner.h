@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/plan/plan.h"
 #include "rbsf/planner/control_sampler.h"
 #include "rbsf/planner/planner_settings.h"

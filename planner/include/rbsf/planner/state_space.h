@@ -20,7 +20,7 @@
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/planner/planner_settings.h"
 
 namespace rbsf::planner {

@@ -20,9 +20,9 @@
 
 #include <optional>
 
-#include "rbsf/dynamics/contact_balance.h"
-#include "rbsf/dynamics/model.h"
-#include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/core/contact_balance.h"
+#include "rbsf/dynamics/core/model.h"
+#include "rbsf/dynamics/core/placement.h"
 #include "rbsf/planner/support_reach.h"
 
 namespace rbsf::planner {

@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/feedback_schedule.h"
+#include "rbsf/dynamics/control/feedback_schedule.h"
 #include "rbsf/plan/plan.h"
 #include "rbsf/plan/plan_margins.h"
 #include "rbsf/planner/pivot_turn_search.h"

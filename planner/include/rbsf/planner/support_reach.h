@@ -15,7 +15,7 @@
 #include <array>
 #include <string>
 
-#include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/core/placement.h"
 
 namespace rbsf::planner {
 

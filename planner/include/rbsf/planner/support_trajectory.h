@@ -40,9 +40,9 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/feedback_schedule.h"
-#include "rbsf/dynamics/reference_trajectory.h"
-#include "rbsf/dynamics/sensing.h"
+#include "rbsf/dynamics/control/feedback_schedule.h"
+#include "rbsf/dynamics/control/reference_trajectory.h"
+#include "rbsf/dynamics/core/sensing.h"
 #include "rbsf/plan/plan.h"
 #include "rbsf/planner/support_search.h"
 

@@ -16,7 +16,7 @@
 
 #include <ompl/base/StateValidityChecker.h>
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/planner/planner_settings.h"
 #include "rbsf/planner/state_space.h"
 

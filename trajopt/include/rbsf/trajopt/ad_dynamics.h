@@ -15,8 +15,8 @@
 #include <Eigen/Core>
 #include <unsupported/Eigen/AutoDiff>
 
-#include "rbsf/dynamics/equations.h"
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/equations.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/trajopt/decision_layout.h"
 
 namespace rbsf::trajopt {

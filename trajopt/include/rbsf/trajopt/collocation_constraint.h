@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/trajopt/ad_dynamics.h"
 #include "rbsf/trajopt/nlp_element.h"
 #include "rbsf/trajopt/schedule.h"

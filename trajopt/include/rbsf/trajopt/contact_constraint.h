@@ -2,7 +2,7 @@
 /// \file
 /// \brief Where each fingertip is relative to the object boundary, at every knot.
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/trajopt/ad_dynamics.h"
 #include "rbsf/trajopt/nlp_element.h"
 #include "rbsf/trajopt/schedule.h"

@@ -21,7 +21,7 @@
 /// positions, so they cannot alternate from knot to knot unseen.
 /// xi is not wrapped: it moves continuously over the plan (the initial guess unwraps it).
 
-#include "rbsf/dynamics/state_layout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf::trajopt {
 

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/plan/plan.h"
 #include "rbsf/trajopt/decision_layout.h"
 #include "rbsf/trajopt/schedule.h"

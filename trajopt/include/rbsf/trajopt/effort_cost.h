@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/trajopt/decision_layout.h"
 #include "rbsf/trajopt/nlp_element.h"
 #include "rbsf/trajopt/schedule.h"

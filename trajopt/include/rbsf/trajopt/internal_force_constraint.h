@@ -31,7 +31,7 @@
 #include <cmath>
 #include <vector>
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/trajopt/ad_dynamics.h"
 #include "rbsf/trajopt/decision_layout.h"
 #include "rbsf/trajopt/nlp_element.h"

@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/plan/optimization_summary.h"
 #include "rbsf/plan/plan.h"
 #include "rbsf/trajopt/optimizer_settings.h"

@@ -7,9 +7,9 @@
 #include <array>
 #include <vector>
 
-#include "rbsf/dynamics/contact_roles.h"
-#include "rbsf/dynamics/model.h"
-#include "rbsf/dynamics/simulator.h"
+#include "rbsf/dynamics/core/contact_roles.h"
+#include "rbsf/dynamics/core/model.h"
+#include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/plan/plan.h"
 
 namespace rbsf::trajopt {

@@ -16,9 +16,9 @@
 #include <string_view>
 #include <vector>
 
-#include "rbsf/dynamics/cell.h"
-#include "rbsf/dynamics/placement.h"
-#include "rbsf/dynamics/types.h"
+#include "rbsf/dynamics/core/cell.h"
+#include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/types.h"
 
 namespace rbsf::tools {
 
@@ -56,7 +56,7 @@ std::vector<std::string_view> parseFields(std::string_view text, std::string_vie
 rbsf::Pose parsePose(std::string_view text, std::string_view what);
 
 /// \brief A configuration q = (x, y, phi, theta, l_1..l_m) in the order of
-///        rbsf/dynamics/state_layout.h; phi and theta accept the deg suffix.
+///        rbsf/dynamics/core/state_layout.h; phi and theta accept the deg suffix.
 /// \throws InputError also when m is outside 1..kMaxFingers.
 VecQ parseConfig(std::string_view text, std::string_view what, int m);
 

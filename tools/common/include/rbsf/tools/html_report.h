@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "rbsf/dynamics/model.h"
+#include "rbsf/dynamics/core/model.h"
 #include "rbsf/tools/svg_animation.h"
 #include "rbsf/tools/trajectory_writer.h"
 

@@ -30,8 +30,8 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/model.h"
-#include "rbsf/dynamics/placement.h"
+#include "rbsf/dynamics/core/model.h"
+#include "rbsf/dynamics/core/placement.h"
 #include "rbsf/tools/trajectory_writer.h"
 
 namespace rbsf::tools {

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "rbsf/dynamics/phase.h"
+#include "rbsf/dynamics/core/phase.h"
 
 namespace rbsf::tools {
 

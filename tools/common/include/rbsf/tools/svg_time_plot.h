@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/dynamics/phase.h"
+#include "rbsf/dynamics/core/phase.h"
 
 namespace rbsf::tools {
 

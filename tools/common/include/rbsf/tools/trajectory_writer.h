@@ -2,7 +2,7 @@
 /// \file
 /// \brief Sampled trajectories written as CSV or JSON, streamed and atomic.
 ///
-/// Samples and the CSV columns are those of rbsf/dynamics/trajectory_sample.h (the plan
+/// Samples and the CSV columns are those of rbsf/dynamics/core/trajectory_sample.h (the plan
 /// files' CSV is the same). JSON: {"columns": {...}, "fingers": m, "samples": [{"t": ..,
 /// "q": [..], "v": [..], "tau": [..], "f_n": [..], "phase": ".."}, ..]}. Each sample goes
 /// to a temporary file in the target's directory as it is added (memory stays flat however
@@ -14,7 +14,7 @@
 #include <cstdio>
 #include <string>
 
-#include "rbsf/dynamics/trajectory_sample.h"
+#include "rbsf/dynamics/core/trajectory_sample.h"
 
 namespace rbsf::tools {
 

@@ -1,0 +1,124 @@
+#include "rbsf/dynamics/core/lemke.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rbsf {
+namespace {
+
+// A tableau entry counts as positive in the ratio test above this fraction of the largest
+// magnitude in M (pivoting on rounding noise would blow the tableau up).
+constexpr double kPivotTol = 1e-12;
+// Ratios equal within this relative tolerance are ties, broken lexicographically.
+constexpr double kTieTol = 1e-12;
+
+}  // namespace
+
+LemkeWorkspace::LemkeWorkspace(int capacity)
+    : capacity_(capacity),
+      tableau_(Eigen::MatrixXd::Zero(capacity, 2 * capacity + 2)),
+      basis_(static_cast<size_t>(capacity)),
+      ties_(static_cast<size_t>(capacity)) {}
+
+LcpStatus solveLcpLemke(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                        const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
+                        LemkeWorkspace& ws, int max_pivots) {
+  const int n = static_cast<int>(q.size());
+  if (M.rows() != n || M.cols() != n || z.size() != n)
+    throw std::invalid_argument("solveLcpLemke: M must be n x n and z of size n");
+  if (n > ws.capacity_) throw std::invalid_argument("solveLcpLemke: problem exceeds workspace");
+  LcpStatus status;
+  z.setZero();
+  if (n == 0 || q.minCoeff() >= 0.0) {
+    status.solved = true;
+    return status;
+  }
+  if (max_pivots <= 0) max_pivots = 50 * (n + 1);
+
+  // Columns: w_0..w_{n-1} | z_0..z_{n-1} | z0 | rhs. The w block starts as the identity and
+  // then always holds B^-1, which the lexicographic rule reads.
+  Eigen::MatrixXd& T = ws.tableau_;
+  const int c_z0 = 2 * n, c_rhs = 2 * n + 1;
+  T.topLeftCorner(n, n).setIdentity();
+  T.block(0, n, n, n) = -M;
+  T.col(c_z0).head(n).setConstant(-1.0);
+  T.col(c_rhs).head(n) = q;
+  for (int i = 0; i < n; ++i) ws.basis_[i] = i;
+  const double piv_tol = kPivotTol * std::max(1.0, M.cwiseAbs().maxCoeff());
+
+  auto pivot = [&](int r, int c) {
+    const double p = T(r, c);
+    T.row(r).head(c_rhs + 1) /= p;
+    for (int i = 0; i < n; ++i) {
+      if (i == r) continue;
+      const double f = T(i, c);
+      if (f != 0.0) T.row(i).head(c_rhs + 1) -= f * T.row(r).head(c_rhs + 1);
+    }
+    ++status.pivots;
+  };
+
+  // First pivot: z0 enters at the most negative q_i, making every basic variable >= 0.
+  int r = 0;
+  for (int i = 1; i < n; ++i)
+    if (q[i] < q[r]) r = i;
+  pivot(r, c_z0);
+  int leaving = ws.basis_[r];
+  ws.basis_[r] = c_z0;
+
+  while (status.pivots < max_pivots) {
+    const int entering = leaving < n ? leaving + n : leaving - n;  // the complement
+    // Minimum-ratio rows, then lexicographic on (rhs, B^-1 row) / pivot.
+    int count = 0;
+    double best = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double a = T(i, entering);
+      if (!(a > piv_tol)) continue;
+      const double ratio = T(i, c_rhs) / a;
+      if (count == 0 || ratio < best - kTieTol * (1.0 + std::abs(best))) {
+        best = ratio;
+        count = 0;
+        ws.ties_[count++] = i;
+      } else if (ratio <= best + kTieTol * (1.0 + std::abs(best))) {
+        ws.ties_[count++] = i;
+      }
+    }
+    if (count == 0) return LcpStatus{false, status.pivots};  // secondary ray
+    int row = -1;
+    for (int k = 0; k < count; ++k)
+      if (ws.basis_[ws.ties_[k]] == c_z0) row = ws.ties_[k];  // let z0 leave: done next
+    for (int col = 0; row < 0 && col < n; ++col) {
+      int kept = 0;
+      double lex = 0.0;
+      for (int k = 0; k < count; ++k) {
+        const int i = ws.ties_[k];
+        const double ratio = T(i, col) / T(i, entering);
+        if (kept == 0 || ratio < lex - kTieTol * (1.0 + std::abs(lex))) {
+          lex = ratio;
+          kept = 0;
+          ws.ties_[kept++] = i;
+        } else if (ratio <= lex + kTieTol * (1.0 + std::abs(lex))) {
+          ws.ties_[kept++] = i;
+        }
+      }
+      count = kept;
+      if (count == 1) row = ws.ties_[0];
+    }
+    if (row < 0) row = ws.ties_[0];  // rows of B^-1 are independent: only rounding gets here
+    pivot(row, entering);
+    leaving = ws.basis_[row];
+    ws.basis_[row] = entering;
+    if (leaving == c_z0) {
+      for (int i = 0; i < n; ++i) {
+        const int b = ws.basis_[i];
+        if (b >= n && b < 2 * n) z[b - n] = std::max(0.0, T(i, c_rhs));
+      }
+      status.solved = true;
+      return status;
+    }
+  }
+  z.setZero();
+  return LcpStatus{false, status.pivots};
+}
+
+}  // namespace rbsf
