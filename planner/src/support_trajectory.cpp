@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
-#include <functional>
 #include <limits>
+#include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "rbsf/dynamics/control/control_law.h"
 #include "rbsf/dynamics/core/rollout.h"
@@ -81,6 +83,294 @@ JigPose runPose(const Stretch& r, const SupportGeometry& g, const Eigen::VectorX
   }
 }
 
+/// Builds the reference of a support path: first its stretches (the rests at both ends, the
+/// runs and, between them, the hand-overs), then the knots and input pieces over them.
+class ReferenceBuilder {
+ public:
+  ReferenceBuilder(const RbsfModel& model, SupportGeometry& geometry, const SupportPath& path,
+                   const SupportTiming& timing)
+      : model_(model),
+        geometry_(geometry),
+        path_(path),
+        timing_(timing),
+        m_(model.numFingers()),
+        balancer_(model, geometry.settings().balance),
+        data_(m_) {}
+
+  /// The stretches of the whole path, in time order.
+  void addStretches();
+  /// The reference over the stretches; `runs`, when given, receives them.
+  ReferenceTrajectory knots(std::vector<SupportRun>* runs);
+
+ private:
+  std::optional<VecQ> reach(const Stretch& r, double s) const;
+  VecQ configuration(const Stretch& r, double s) const;
+  VecU staticTau(const JigPose& pose, const ContactSet& set);
+  void addHold(std::size_t step, double duration, bool end);
+  void addRun(std::size_t a, std::size_t b);
+  void addHandover(std::size_t i);
+  void addFingerMove(const ContactSet& carrier, const JigPose& pose, int f, double a, double b,
+                     std::size_t i);
+  ContactRoles rolesOf(const Stretch& r);
+  ContactRoles rolesAt(ContactRoles roles, const VecQ& q, const VecQ& v);
+  void addKnots(const Stretch& r);
+
+  const RbsfModel& model_;
+  SupportGeometry& geometry_;
+  const SupportPath& path_;
+  const SupportTiming& timing_;
+  const int m_;
+  ContactBalancer balancer_;
+  ModelData data_;
+  std::vector<Stretch> stretches_;
+  // The reference as knots() builds it.
+  ReferenceTrajectory ref_;
+  double t0_ = 0.0;  ///< the start of the stretch at hand [s]
+  VecU tau_prev_;    ///< the input at the last knot
+  bool first_knot_ = true;
+};
+
+// The configuration of a stretch at progress s in [0, 1]; nothing when the stretch leaves the
+// jig there.
+std::optional<VecQ> ReferenceBuilder::reach(const Stretch& r, double s) const {
+  JigPose pose = r.base;
+  if (r.kind == Stretch::kRun)
+    pose = runPose(r, geometry_, catmullRom(r.points, s * (r.points.size() - 1.0)));
+  std::optional<VecQ> q = geometry_.configuration(pose, r.set, false);
+  if (q && r.kind == Stretch::kFinger)
+    (*q)[layout::stroke(r.finger)] = r.from + s * (r.to - r.from);
+  return q;
+}
+
+// reach(), which must be inside the jig.
+VecQ ReferenceBuilder::configuration(const Stretch& r, double s) const {
+  const std::optional<VecQ> q = reach(r, s);
+  if (!q) throw SupportReferenceError(r.first_step, r.last_step);
+  return *q;
+}
+
+// The input that holds the part at rest at `pose` on `set`.
+VecU ReferenceBuilder::staticTau(const JigPose& pose, const ContactSet& set) {
+  const std::optional<VecQ> q = geometry_.configuration(pose, set, false);
+  return balancer_.statics(*q, set, data_).tau;
+}
+
+void ReferenceBuilder::addStretches() {
+  if (timing_.settle_time > 0.0)  // the start at rest under the first set's forces
+    addHold(0, timing_.settle_time, false);
+  std::size_t i = 0;
+  while (i < path_.steps.size()) {
+    std::size_t j = i;
+    while (j + 1 < path_.steps.size() && path_.steps[j + 1].set == path_.steps[i].set) ++j;
+    if (i > 0 && !stretches_.empty()) addHandover(i);
+    if (j > i) addRun(i, j);  // a set held at one pose alone has no run
+    i = j + 1;
+  }
+  if (timing_.end_rest > 0.0)  // the end at rest under the last set's forces
+    addHold(path_.steps.size() - 1, timing_.end_rest, true);
+}
+
+// The part at rest at the path's step `step` under its set's forces for `duration`; `end`:
+// the final rest.
+void ReferenceBuilder::addHold(std::size_t step, double duration, bool end) {
+  const SupportStep& at = path_.steps[step];
+  Stretch hold;
+  hold.kind = Stretch::kRamp;
+  hold.set = hold.before = hold.next = at.set;
+  hold.base = at.pose;
+  hold.tau_from = hold.tau_to = staticTau(hold.base, hold.set);
+  hold.duration = duration;
+  hold.end = end;
+  hold.first_step = hold.last_step = step;
+  stretches_.push_back(hold);
+}
+
+// The run of steps a..b (one set), timed by its lengths along the spline. Where the spline
+// between valid waypoints leaves the jig, the run is split there into runs that rest at the
+// waypoints around the interval left, whose own run (two points: a straight line, the motion
+// the search checked) stays inside.
+void ReferenceBuilder::addRun(std::size_t a, std::size_t b) {
+  const SupportStep& first = path_.steps[a];
+  Stretch r;
+  r.kind = Stretch::kRun;
+  r.set = first.set;
+  r.base = first.pose;
+  r.anchor = first.anchor;
+  r.first_step = a;
+  r.last_step = b;
+  for (std::size_t k = a; k <= b; ++k) r.points.push_back(runCoordinates(path_.steps[k]));
+  // Lengths along the spline: the part's travel and turn, the base's, the strokes'.
+  double travel = 0.0, turn = 0.0, base = 0.0, stroke = 0.0;
+  const int fine = 8 * static_cast<int>(r.points.size());
+  VecQ prev = configuration(r, 0.0);
+  for (int k = 1; k <= fine; ++k) {
+    const double s = static_cast<double>(k) / fine;
+    const std::optional<VecQ> q = reach(r, s);
+    if (!q) {
+      if (b == a + 1) throw SupportReferenceError(a, b);
+      const std::size_t left =
+          a + std::min(static_cast<std::size_t>(s * (b - a)), b - a - 1);  // interval's start
+      if (left > a) addRun(a, left);
+      addRun(left, left + 1);
+      if (b > left + 1) addRun(left + 1, b);
+      return;
+    }
+    const VecQ dq = *q - prev;
+    travel += std::hypot(dq[layout::kX], dq[layout::kY]);
+    turn += std::abs(dq[layout::kPhi]);
+    base += std::abs(dq[layout::kTheta]);
+    stroke += dq.tail(m_).cwiseAbs().maxCoeff();
+    prev = *q;
+  }
+  const double peak = 1.875, peak_acc = 5.7735;
+  const double longest = std::max({travel, turn, base});
+  r.duration = std::max({timing_.min_run_time, peak * travel / timing_.part_speed,
+                         peak * std::max(turn, base) / timing_.angular_speed,
+                         peak * stroke / timing_.stroke_speed,
+                         std::sqrt(peak_acc * longest / timing_.part_acceleration)});
+  stretches_.push_back(r);
+}
+
+// The hand-over at step i's pose from the set of the stretch before to step i's set: the
+// fingers that join move up alone, the forces ramp from one set's to the other's, and the
+// fingers that leave move away alone.
+void ReferenceBuilder::addHandover(std::size_t i) {
+  const Cell& cell = model_.cell();
+  const ContactSet from = stretches_.back().set, to = path_.steps[i].set;
+  const JigPose pose = path_.steps[i].pose;
+  const std::uint32_t joins = to.touching & ~from.touching;
+  const std::uint32_t leaves = from.touching & ~to.touching;
+  const std::optional<VecQ> q_to = geometry_.configuration(pose, to, false);
+  for (int f = 0; f < m_; ++f)
+    if ((joins >> f) & 1u)
+      addFingerMove(from, pose, f, cell.fingers[f].stroke_min, (*q_to)[layout::stroke(f)], i);
+  Stretch ramp;
+  ramp.kind = Stretch::kRamp;
+  ramp.set = ContactSet{from.touching | to.touching, from.sticking & to.sticking};
+  ramp.base = pose;
+  ramp.tau_from = staticTau(pose, from);
+  ramp.tau_to = staticTau(pose, to);
+  ramp.before = from;
+  ramp.next = to;
+  ramp.duration = timing_.handover_time;
+  ramp.first_step = i - 1;
+  ramp.last_step = i;
+  stretches_.push_back(ramp);
+  const std::optional<VecQ> q_from = geometry_.configuration(pose, from, false);
+  for (int f = 0; f < m_; ++f)
+    if ((leaves >> f) & 1u)
+      addFingerMove(to, pose, f, (*q_from)[layout::stroke(f)], cell.fingers[f].stroke_min, i);
+}
+
+// Finger f alone strokes from `a` to `b` (rest to rest) at `pose` while `carrier` holds the
+// part, in the hand-over at step i.
+void ReferenceBuilder::addFingerMove(const ContactSet& carrier, const JigPose& pose, int f,
+                                     double a, double b, std::size_t i) {
+  Stretch r;
+  r.kind = Stretch::kFinger;
+  r.set = carrier;
+  r.base = pose;
+  r.finger = f;
+  r.from = a;
+  r.to = b;
+  r.duration = std::max(timing_.min_run_time, 1.875 * std::abs(b - a) / timing_.stroke_speed);
+  r.first_step = i - 1;
+  r.last_step = i;
+  stretches_.push_back(r);
+}
+
+// The contacts' roles over a stretch (contact_roles.h). A run's sliders slide the way its
+// middle slips them; at rest the set's sticking contacts stick (its sliders: below); a finger
+// whose load a hand-over ramps from or to nothing is not relied on, and one that moves up
+// alone to join may touch at its end; the others are lifted.
+ContactRoles ReferenceBuilder::rolesOf(const Stretch& r) {
+  ContactRoles roles{};
+  const VecQ q = configuration(r, 0.5);
+  VecQ v = VecQ::Zero(q.size());
+  if (r.kind == Stretch::kRun) v = configuration(r, 0.5 + 1e-4) - configuration(r, 0.5 - 1e-4);
+  data_.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
+  model_.updateContacts(q, data_);
+  for (int f = 0; f < m_; ++f) {
+    const bool touching = r.set.touches(f);
+    if (r.kind == Stretch::kFinger && f == r.finger)
+      roles[f] = r.to > r.from ? ContactRole::kFree : ContactRole::kLifted;
+    else if (r.kind == Stretch::kRamp && touching && !(r.before.touches(f) && r.next.touches(f)))
+      roles[f] = ContactRole::kFree;
+    else if (!touching)
+      roles[f] = ContactRole::kLifted;
+    else if (r.set.sticks(f))
+      roles[f] = ContactRole::kStick;
+    else if (r.kind != Stretch::kRun)
+      // A slider at rest is stuck but not relied on (its run's balance may hold it near its
+      // cone's edge), except in the final rest beside one other tip, where the part must
+      // come to rest and two sticking tips steer their squeeze (among three no actuator
+      // steers it).
+      roles[f] = r.end && r.set.count() <= 2 ? ContactRole::kStick : ContactRole::kFree;
+    else
+      roles[f] =
+          data_.T.col(f).dot(v) < 0.0 ? ContactRole::kSlideNegative : ContactRole::kSlidePositive;
+  }
+  return roles;
+}
+
+// A slider's role at one instant of a run: the way the reference slips it there, where it
+// clearly does (else the run's own way).
+ContactRoles ReferenceBuilder::rolesAt(ContactRoles roles, const VecQ& q, const VecQ& v) {
+  data_.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
+  model_.updateContacts(q, data_);
+  for (int f = 0; f < m_; ++f) {
+    if (slipSign(roles[f]) == 0) continue;
+    const double slip = data_.T.col(f).dot(v);
+    if (std::abs(slip) > kClearSlip)
+      roles[f] = slip < 0.0 ? ContactRole::kSlideNegative : ContactRole::kSlidePositive;
+  }
+  return roles;
+}
+
+ReferenceTrajectory ReferenceBuilder::knots(std::vector<SupportRun>* runs) {
+  for (const Stretch& r : stretches_) {
+    addKnots(r);
+    if (runs != nullptr)
+      runs->push_back(SupportRun{t0_, t0_ + r.duration, r.kind == Stretch::kRamp ? r.next : r.set,
+                                 r.kind != Stretch::kRun, r.first_step, r.last_step});
+    first_knot_ = false;
+    t0_ += r.duration;
+  }
+  return std::move(ref_);
+}
+
+// The knots of stretch `r` (from t0_; its first knot only when it is the first stretch) and
+// the input pieces that end at them: a ramp's inputs blend its ends', the others balance the
+// motion (the last input where the balance has no solution).
+void ReferenceBuilder::addKnots(const Stretch& r) {
+  const double dt = timing_.knot_interval;
+  const int n = std::max(1, static_cast<int>(std::ceil(r.duration / dt - 1e-9)));
+  const double step = r.duration / n;
+  auto q_at = [&](double t) { return configuration(r, quintic(t / r.duration)); };
+  const ContactRoles roles = rolesOf(r);
+  for (int k = first_knot_ ? 0 : 1; k <= n; ++k) {
+    const double t = k * step, h = std::min(1e-3, 0.25 * step);
+    const VecQ q = q_at(t);
+    const VecQ v = (q_at(t + h) - q_at(t - h)) / (2.0 * h);
+    const VecQ a = (q_at(t + h) - 2.0 * q + q_at(t - h)) / (h * h);
+    VecU tau;
+    if (r.kind == Stretch::kRamp) {
+      const double s = quintic(t / r.duration);
+      tau = (1.0 - s) * r.tau_from + s * r.tau_to;
+    } else {
+      const ContactBalance b = balancer_.solve(q, v, a, r.set, data_);
+      tau = b.solvable ? b.tau : (tau_prev_.size() ? tau_prev_ : b.tau);
+    }
+    ref_.addKnot(t0_ + t, q, v);
+    if (!first_knot_ || k > 0) {
+      const Phase ph = (r.kind == Stretch::kRamp ? r.next : r.set).phase();
+      ref_.addInputPiece(t0_ + (k - 1) * step, step, tau_prev_, tau, ph,
+                         r.kind == Stretch::kRun ? rolesAt(roles, q, v) : roles);
+    }
+    tau_prev_ = tau;
+  }
+}
+
 }  // namespace
 
 SupportReferenceError::SupportReferenceError(std::size_t first, std::size_t last)
@@ -93,236 +383,9 @@ ReferenceTrajectory supportReference(const RbsfModel& model, SupportGeometry& ge
                                      const SupportPath& path, const SupportTiming& timing,
                                      std::vector<SupportRun>* runs) {
   if (path.steps.empty()) throw std::invalid_argument("supportReference: empty path");
-  const int m = model.numFingers();
-  const Cell& cell = model.cell();
-  ContactBalancer balancer(model, geometry.settings().balance);
-  ModelData data(m);
-
-  // The configuration of a stretch at progress s in [0, 1].
-  // Nothing when the stretch leaves the jig there.
-  auto reach = [&](const Stretch& r, double s) -> std::optional<VecQ> {
-    JigPose pose = r.base;
-    if (r.kind == Stretch::kRun)
-      pose = runPose(r, geometry, catmullRom(r.points, s * (r.points.size() - 1.0)));
-    std::optional<VecQ> q = geometry.configuration(pose, r.set, false);
-    if (q && r.kind == Stretch::kFinger)
-      (*q)[layout::stroke(r.finger)] = r.from + s * (r.to - r.from);
-    return q;
-  };
-  auto configuration = [&](const Stretch& r, double s) -> VecQ {
-    const std::optional<VecQ> q = reach(r, s);
-    if (!q) throw SupportReferenceError(r.first_step, r.last_step);
-    return *q;
-  };
-  auto staticTau = [&](const JigPose& pose, const ContactSet& set) {
-    const std::optional<VecQ> q = geometry.configuration(pose, set, false);
-    return balancer.statics(*q, set, data).tau;
-  };
-
-  // Stretches: runs and, between them, the hand-overs.
-  std::vector<Stretch> stretches;
-  if (timing.settle_time > 0.0) {  // the start at rest under the first set's forces
-    Stretch hold;
-    hold.kind = Stretch::kRamp;
-    hold.set = hold.before = hold.next = path.steps.front().set;
-    hold.base = path.steps.front().pose;
-    hold.tau_from = hold.tau_to = staticTau(hold.base, hold.set);
-    hold.duration = timing.settle_time;
-    stretches.push_back(hold);
-  }
-  // The run of steps a..b (one set), timed by its lengths along the spline. Where the spline
-  // between valid waypoints leaves the jig, the run is split there into runs that rest at
-  // the waypoints around the interval left, whose own run (two points: a straight line, the
-  // motion the search checked) stays inside.
-  std::function<void(std::size_t, std::size_t)> addRun = [&](std::size_t a, std::size_t b) {
-    const SupportStep& first = path.steps[a];
-    Stretch r;
-    r.kind = Stretch::kRun;
-    r.set = first.set;
-    r.base = first.pose;
-    r.anchor = first.anchor;
-    r.first_step = a;
-    r.last_step = b;
-    for (std::size_t k = a; k <= b; ++k) r.points.push_back(runCoordinates(path.steps[k]));
-    // Lengths along the spline: the part's travel and turn, the base's, the strokes'.
-    double travel = 0.0, turn = 0.0, base = 0.0, stroke = 0.0;
-    const int fine = 8 * static_cast<int>(r.points.size());
-    VecQ prev = configuration(r, 0.0);
-    for (int k = 1; k <= fine; ++k) {
-      const double s = static_cast<double>(k) / fine;
-      const std::optional<VecQ> q = reach(r, s);
-      if (!q) {
-        if (b == a + 1) throw SupportReferenceError(a, b);
-        const std::size_t left =
-            a + std::min(static_cast<std::size_t>(s * (b - a)), b - a - 1);  // interval's start
-        if (left > a) addRun(a, left);
-        addRun(left, left + 1);
-        if (b > left + 1) addRun(left + 1, b);
-        return;
-      }
-      const VecQ dq = *q - prev;
-      travel += std::hypot(dq[layout::kX], dq[layout::kY]);
-      turn += std::abs(dq[layout::kPhi]);
-      base += std::abs(dq[layout::kTheta]);
-      stroke += dq.tail(m).cwiseAbs().maxCoeff();
-      prev = *q;
-    }
-    const double peak = 1.875, peak_acc = 5.7735;
-    const double longest = std::max({travel, turn, base});
-    r.duration = std::max({timing.min_run_time, peak * travel / timing.part_speed,
-                           peak * std::max(turn, base) / timing.angular_speed,
-                           peak * stroke / timing.stroke_speed,
-                           std::sqrt(peak_acc * longest / timing.part_acceleration)});
-    stretches.push_back(r);
-  };
-  std::size_t i = 0;
-  while (i < path.steps.size()) {
-    std::size_t j = i;
-    while (j + 1 < path.steps.size() && path.steps[j + 1].set == path.steps[i].set) ++j;
-    const SupportStep& first = path.steps[i];
-    if (i > 0 && !stretches.empty()) {  // the hand-over from the previous set at this pose
-      const ContactSet from = stretches.back().set, to = first.set;
-      const JigPose pose = first.pose;
-      const std::uint32_t joins = to.touching & ~from.touching;
-      const std::uint32_t leaves = from.touching & ~to.touching;
-      const std::optional<VecQ> q_to = geometry.configuration(pose, to, false);
-      // Finger f alone strokes from `a` to `b` (rest to rest) while `carrier` holds the part.
-      auto moveFinger = [&](const ContactSet& carrier, int f, double a, double b) {
-        Stretch r;
-        r.kind = Stretch::kFinger;
-        r.set = carrier;
-        r.base = pose;
-        r.finger = f;
-        r.from = a;
-        r.to = b;
-        r.duration = std::max(timing.min_run_time, 1.875 * std::abs(b - a) / timing.stroke_speed);
-        r.first_step = i - 1;
-        r.last_step = i;
-        stretches.push_back(r);
-      };
-      for (int f = 0; f < m; ++f)
-        if ((joins >> f) & 1u)
-          moveFinger(from, f, cell.fingers[f].stroke_min, (*q_to)[layout::stroke(f)]);
-      Stretch ramp;
-      ramp.kind = Stretch::kRamp;
-      ramp.set = ContactSet{from.touching | to.touching, from.sticking & to.sticking};
-      ramp.base = pose;
-      ramp.tau_from = staticTau(pose, from);
-      ramp.tau_to = staticTau(pose, to);
-      ramp.before = from;
-      ramp.next = to;
-      ramp.duration = timing.handover_time;
-      ramp.first_step = i - 1;
-      ramp.last_step = i;
-      stretches.push_back(ramp);
-      const std::optional<VecQ> q_from = geometry.configuration(pose, from, false);
-      for (int f = 0; f < m; ++f)
-        if ((leaves >> f) & 1u)
-          moveFinger(to, f, (*q_from)[layout::stroke(f)], cell.fingers[f].stroke_min);
-    }
-    if (j > i) addRun(i, j);  // a set held at one pose alone has no run
-    i = j + 1;
-  }
-
-  if (timing.end_rest > 0.0) {  // the end at rest under the last set's forces
-    const SupportStep& last = path.steps.back();
-    Stretch hold;
-    hold.kind = Stretch::kRamp;
-    hold.set = hold.before = hold.next = last.set;
-    hold.base = last.pose;
-    hold.tau_from = hold.tau_to = staticTau(hold.base, hold.set);
-    hold.duration = timing.end_rest;
-    hold.end = true;
-    hold.first_step = hold.last_step = path.steps.size() - 1;
-    stretches.push_back(hold);
-  }
-
-  // The contacts' roles over a stretch (contact_roles.h). A run's sliders slide the way its
-  // middle slips them; at rest the set's sticking contacts stick (its sliders: below); a
-  // finger whose load a hand-over ramps from or to nothing is not relied on, and one that
-  // moves up alone to join may touch at its end; the others are lifted.
-  auto rolesOf = [&](const Stretch& r) {
-    ContactRoles roles{};
-    const VecQ q = configuration(r, 0.5);
-    VecQ v = VecQ::Zero(q.size());
-    if (r.kind == Stretch::kRun) v = configuration(r, 0.5 + 1e-4) - configuration(r, 0.5 - 1e-4);
-    data.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
-    model.updateContacts(q, data);
-    for (int f = 0; f < m; ++f) {
-      const bool touching = r.set.touches(f);
-      if (r.kind == Stretch::kFinger && f == r.finger)
-        roles[f] = r.to > r.from ? ContactRole::kFree : ContactRole::kLifted;
-      else if (r.kind == Stretch::kRamp && touching && !(r.before.touches(f) && r.next.touches(f)))
-        roles[f] = ContactRole::kFree;
-      else if (!touching)
-        roles[f] = ContactRole::kLifted;
-      else if (r.set.sticks(f))
-        roles[f] = ContactRole::kStick;
-      else if (r.kind != Stretch::kRun)
-        // A slider at rest is stuck but not relied on (its run's balance may hold it near its
-        // cone's edge), except in the final rest beside one other tip, where the part must
-        // come to rest and two sticking tips steer their squeeze (among three no actuator
-        // steers it).
-        roles[f] = r.end && r.set.count() <= 2 ? ContactRole::kStick : ContactRole::kFree;
-      else
-        roles[f] =
-            data.T.col(f).dot(v) < 0.0 ? ContactRole::kSlideNegative : ContactRole::kSlidePositive;
-    }
-    return roles;
-  };
-  // A slider's role at one instant of a run: the way the reference slips it there, where it
-  // clearly does (else the run's own way).
-  auto rolesAt = [&](ContactRoles roles, const VecQ& q, const VecQ& v) {
-    data.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
-    model.updateContacts(q, data);
-    for (int f = 0; f < m; ++f) {
-      if (slipSign(roles[f]) == 0) continue;
-      const double slip = data.T.col(f).dot(v);
-      if (std::abs(slip) > kClearSlip)
-        roles[f] = slip < 0.0 ? ContactRole::kSlideNegative : ContactRole::kSlidePositive;
-    }
-    return roles;
-  };
-
-  // Knots and input pieces.
-  ReferenceTrajectory ref;
-  double t0 = 0.0;
-  const double dt = timing.knot_interval;
-  VecU tau_prev;
-  bool first_knot = true;
-  for (const Stretch& r : stretches) {
-    const int n = std::max(1, static_cast<int>(std::ceil(r.duration / dt - 1e-9)));
-    const double step = r.duration / n;
-    auto q_at = [&](double t) { return configuration(r, quintic(t / r.duration)); };
-    const ContactRoles roles = rolesOf(r);
-    for (int k = first_knot ? 0 : 1; k <= n; ++k) {
-      const double t = k * step, h = std::min(1e-3, 0.25 * step);
-      const VecQ q = q_at(t);
-      const VecQ v = (q_at(t + h) - q_at(t - h)) / (2.0 * h);
-      const VecQ a = (q_at(t + h) - 2.0 * q + q_at(t - h)) / (h * h);
-      VecU tau;
-      if (r.kind == Stretch::kRamp) {
-        const double s = quintic(t / r.duration);
-        tau = (1.0 - s) * r.tau_from + s * r.tau_to;
-      } else {
-        const ContactBalance b = balancer.solve(q, v, a, r.set, data);
-        tau = b.solvable ? b.tau : (tau_prev.size() ? tau_prev : b.tau);
-      }
-      ref.addKnot(t0 + t, q, v);
-      if (!first_knot || k > 0) {
-        const Phase ph = (r.kind == Stretch::kRamp ? r.next : r.set).phase();
-        ref.addInputPiece(t0 + (k - 1) * step, step, tau_prev, tau, ph,
-                          r.kind == Stretch::kRun ? rolesAt(roles, q, v) : roles);
-      }
-      tau_prev = tau;
-    }
-    if (runs != nullptr)
-      runs->push_back(SupportRun{t0, t0 + r.duration, r.kind == Stretch::kRamp ? r.next : r.set,
-                                 r.kind != Stretch::kRun, r.first_step, r.last_step});
-    first_knot = false;
-    t0 += r.duration;
-  }
-  return ref;
+  ReferenceBuilder builder(model, geometry, path, timing);
+  builder.addStretches();
+  return builder.knots(runs);
 }
 
 double departureTime(const plan::Plan& plan, const ReferenceTrajectory& reference, double position,

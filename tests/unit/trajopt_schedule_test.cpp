@@ -46,10 +46,12 @@ std::vector<ModeKey> segmentModes(const RbsfModel& model, const plan::Plan& plan
 TEST(TrajoptSchedule, SplitRunsHoldOnePhaseAndOneSimulatedModePerContact) {
   const RbsfModel& model = test::defaultModel();
   const plan::Plan& plan = test::shortPlan();
-  Schedule split, letters;
-  std::string why;
-  ASSERT_TRUE(buildSchedule(model, plan, 60, RunCut::kContactModes, split, why)) << why;
-  ASSERT_TRUE(buildSchedule(model, plan, 60, RunCut::kPhaseLetters, letters, why)) << why;
+  const ScheduleResult split_built = buildSchedule(model, plan, 60, RunCut::kContactModes);
+  ASSERT_TRUE(split_built.ok()) << split_built.error;
+  const ScheduleResult letters_built = buildSchedule(model, plan, 60, RunCut::kPhaseLetters);
+  ASSERT_TRUE(letters_built.ok()) << letters_built.error;
+  const Schedule& split = split_built.schedule;
+  const Schedule& letters = letters_built.schedule;
   // The fixture's U run holds a lift-off, so splitting adds a run.
   ASSERT_GT(split.runs.size(), letters.runs.size());
 
@@ -84,11 +86,25 @@ TEST(TrajoptSchedule, SplitRunsHoldOnePhaseAndOneSimulatedModePerContact) {
   EXPECT_NEAR(total, plan.duration(), 1e-9);
 
   // Too few intervals for the finer runs: one run per phase letter, as without splitting.
-  Schedule coarse;
-  ASSERT_TRUE(buildSchedule(model, plan, 2 * static_cast<int>(letters.runs.size()),
-                            RunCut::kContactModes, coarse, why))
-      << why;
-  EXPECT_EQ(coarse.runs.size(), letters.runs.size());
+  const ScheduleResult coarse =
+      buildSchedule(model, plan, 2 * static_cast<int>(letters.runs.size()), RunCut::kContactModes);
+  ASSERT_TRUE(coarse.ok()) << coarse.error;
+  EXPECT_EQ(coarse.schedule.runs.size(), letters.runs.size());
+}
+
+TEST(TrajoptSchedule, ErrorsComeBackAsValuesWithNoSchedule) {
+  const RbsfModel& model = test::defaultModel();
+  const ScheduleResult empty = buildSchedule(model, plan::Plan{}, 60, RunCut::kPhaseLetters);
+  EXPECT_FALSE(empty.ok());
+  EXPECT_EQ(empty.error, "the plan has no segments");
+  EXPECT_TRUE(empty.schedule.runs.empty());
+
+  // One interval is fewer than 2 per run for any plan.
+  const ScheduleResult few = buildSchedule(model, test::shortPlan(), 1, RunCut::kPhaseLetters);
+  EXPECT_FALSE(few.ok());
+  EXPECT_NE(few.error.find("fewer than 2 per phase run"), std::string::npos) << few.error;
+  EXPECT_TRUE(few.schedule.runs.empty());
+  EXPECT_EQ(few.schedule.intervals(), 0);
 }
 
 TEST(TrajoptInitialGuess, KnotForcesAreTheSimulatorsSoTheObjectsDynamicsDefectsAreSmall) {

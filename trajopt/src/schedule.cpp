@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numeric>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace rbsf::trajopt {
 
@@ -39,53 +41,57 @@ void statedRoles(int m, const VecC& xi_start, const VecC& xi_end, PhaseRun& run)
   run.phase = sticking >= 2 ? Phase::kC : (sticking == 1 ? Phase::kP : Phase::kU);
 }
 
-}  // namespace
+/// Mode counts of a segment or a run: [contact][ContactMode].
+using ModeCounts = std::array<std::array<int, 3>, kMaxFingers>;
 
-ContactRole Schedule::knotRole(int knot, int i) const {
-  ContactRole r = ContactRole::kOff;
-  if (knot > 0) r = role(knot - 1, i);
-  if (knot < intervals() && strength(role(knot, i)) > strength(r)) r = role(knot, i);
-  return r;
+/// What the re-simulation tells of each segment besides the steps themselves.
+struct SegmentTally {
+  std::vector<ModeCounts> counts;  ///< counts[s]: segment s's mode counts
+  std::vector<VecC> xi_at;         ///< foot points at the segments' ends (xi_at[0]: the start)
+};
+
+/// What the runs were merged from, run by run.
+struct RunTally {
+  std::vector<ModeCounts> counts;      ///< the run's mode counts
+  std::vector<VecC> xi_start, xi_end;  ///< foot points at its ends
+};
+
+// Why the plan gives no schedule, or nothing: no segments, a segment without a step, or
+// (RunCut::kStatedRoles) a segment that states no roles.
+std::string planError(const plan::Plan& plan, RunCut cut) {
+  if (plan.segments.empty()) return "the plan has no segments";
+  for (const plan::PlanSegment& seg : plan.segments)
+    if (seg.steps < 1) return "a segment of the plan holds no simulator step";
+  if (cut == RunCut::kStatedRoles &&
+      !std::all_of(plan.segments.begin(), plan.segments.end(),
+                   [](const plan::PlanSegment& g) { return planned(g.contacts); }))
+    return "the plan does not state every segment's contact roles";
+  return {};
 }
 
-bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals, RunCut cut,
-                   Schedule& schedule, std::string& why) {
-  const bool split_by_contact_modes = cut == RunCut::kContactModes;
+// One pass of the simulator over the plan's segments: every step's state and contacts into
+// `steps`, each segment's mode counts and the foot points at its end.
+SegmentTally resimulate(const RbsfModel& model, const plan::Plan& plan, SimulatedSteps& steps) {
   const int m = model.numFingers();
-  schedule = Schedule{};
-  if (plan.segments.empty()) {
-    why = "the plan has no segments";
-    return false;
-  }
-  for (const plan::PlanSegment& seg : plan.segments)
-    if (seg.steps < 1) {
-      why = "a segment of the plan holds no simulator step";
-      return false;
-    }
   const Simulator sim(model, plan.simulator);
   SimulatorWorkspace ws(m);
   SimState state(plan.q0, VecQ::Zero(plan.q0.size()));
   ModelData data(m);
-  SimulatedSteps& steps = schedule.steps;
   steps.t.push_back(0.0);
   steps.q.push_back(state.q);
   steps.v.push_back(state.v);
 
-  // One pass of the simulator: every step's state and contacts, each segment's mode counts
-  // [contact][mode] and the foot points at its end (xi_at[s + 1]; xi_at[0] at the start).
-  using Counts = std::array<std::array<int, 3>, kMaxFingers>;
-  const int S = static_cast<int>(plan.segments.size());
-  std::vector<Counts> seg_counts(S);
-  std::vector<VecC> xi_at;
+  SegmentTally tally;
+  tally.counts.resize(plan.segments.size());
   model.updateContacts(state.q, data);
-  xi_at.push_back(data.xi_hint);
+  tally.xi_at.push_back(data.xi_hint);
   std::vector<long> seg_steps;
   std::vector<VecU> seg_tau;
   for (const plan::PlanSegment& seg : plan.segments) {
     seg_steps.push_back(seg.steps);
     seg_tau.push_back(seg.tau);
   }
-  for (auto& c : seg_counts)
+  for (auto& c : tally.counts)
     for (auto& ci : c) ci.fill(0);
   HeldInputs inputs(seg_steps, seg_tau);
   rollout(sim, state, inputs.totalSteps(), ws, inputs,
@@ -93,131 +99,143 @@ bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals
             const std::size_t s = inputs.segment();
             const plan::PlanSegment& seg = plan.segments[s];
             for (int i = 0; i < m; ++i)
-              ++seg_counts[s][i][static_cast<int>(report.contacts[i].mode)];
+              ++tally.counts[s][i][static_cast<int>(report.contacts[i].mode)];
             steps.contacts.push_back(report.contacts);
             steps.t.push_back(steps.t.back() + seg.duration / std::max(1, seg.steps));
             steps.q.push_back(now.q);
             steps.v.push_back(now.v);
             if (inputs.endsSegment(n)) {
               model.updateContacts(now.q, data);
-              xi_at.push_back(data.xi_hint);
+              tally.xi_at.push_back(data.xi_hint);
             }
             return true;
           });
-  // The mode a contact held for most of a segment.
-  auto segmentModes = [&](int s) {
-    std::array<int, kMaxFingers> key{};
-    for (int i = 0; i < m; ++i) {
-      const auto& c = seg_counts[s][i];
-      key[i] = static_cast<int>(std::max_element(c.begin(), c.end()) - c.begin());
-    }
-    return key;
-  };
-  // Runs: maximal sequences of segments with one phase letter and, when split, one
-  // segment mode per contact.
-  // A plan that states its contacts' roles (support plans) is cut where they change: the
-  // roles are what the planner meant, the simulated letters flicker at hand-overs.
-  const bool stated = cut == RunCut::kStatedRoles;
-  if (stated && !std::all_of(plan.segments.begin(), plan.segments.end(),
-                             [](const plan::PlanSegment& g) { return planned(g.contacts); })) {
-    why = "the plan does not state every segment's contact roles";
-    return false;
-  }
-  auto groupRuns = [&](bool split, std::vector<int>& first_segment) {
-    first_segment.clear();
-    first_segment.push_back(0);
-    for (int s = 1; s < S; ++s) {
-      const bool cut = stated ? plan.segments[s].contacts != plan.segments[s - 1].contacts
-                              : plan.segments[s].phase != plan.segments[s - 1].phase ||
-                                    (split && segmentModes(s) != segmentModes(s - 1));
-      if (cut) first_segment.push_back(s);
-    }
-    first_segment.push_back(S);
-  };
-  std::vector<int> first_segment;
-  groupRuns(split_by_contact_modes, first_segment);
-  if (!stated && split_by_contact_modes &&
-      intervals < 2 * (static_cast<int>(first_segment.size()) - 1))
-    groupRuns(false, first_segment);  // too few intervals for the finer runs
+  return tally;
+}
 
-  std::vector<Counts> counts;
-  std::vector<VecC> xi_start, xi_end;
+// The mode each of the m contacts held for most of a segment with mode counts `c`.
+std::array<int, kMaxFingers> majorityModes(int m, const ModeCounts& c) {
+  std::array<int, kMaxFingers> key{};
+  for (int i = 0; i < m; ++i)
+    key[i] = static_cast<int>(std::max_element(c[i].begin(), c[i].end()) - c[i].begin());
+  return key;
+}
+
+// The first segment of each run, then the number of segments. Runs are maximal sequences of
+// segments with one phase letter and, when `split`, one majority mode per contact. With
+// stated roles, runs are cut where the roles change instead: the roles are what the planner
+// meant, the simulated letters flicker at hand-overs.
+std::vector<int> groupRuns(const plan::Plan& plan, const std::vector<ModeCounts>& counts, int m,
+                           bool stated, bool split) {
+  const int S = static_cast<int>(plan.segments.size());
+  std::vector<int> first_segment{0};
+  for (int s = 1; s < S; ++s) {
+    const bool cut =
+        stated ? plan.segments[s].contacts != plan.segments[s - 1].contacts
+               : plan.segments[s].phase != plan.segments[s - 1].phase ||
+                     (split && majorityModes(m, counts[s]) != majorityModes(m, counts[s - 1]));
+    if (cut) first_segment.push_back(s);
+  }
+  first_segment.push_back(S);
+  return first_segment;
+}
+
+// groupRuns as `cut` asks, by letter alone when `intervals` are too few for the finer runs.
+std::vector<int> cutRuns(const plan::Plan& plan, const std::vector<ModeCounts>& counts, int m,
+                         RunCut cut, int intervals) {
+  const bool stated = cut == RunCut::kStatedRoles;
+  const bool split = cut == RunCut::kContactModes;
+  std::vector<int> first_segment = groupRuns(plan, counts, m, stated, split);
+  if (!stated && split && intervals < 2 * (static_cast<int>(first_segment.size()) - 1))
+    first_segment = groupRuns(plan, counts, m, stated, false);
+  return first_segment;
+}
+
+// The runs of segments first_segment[j] .. first_segment[j + 1] - 1, appended to `runs`
+// (letter, start, duration and, when `stated`, the stated roles), with their mode counts and
+// foot points.
+RunTally mergeRuns(const plan::Plan& plan, const SegmentTally& segments,
+                   const std::vector<int>& first_segment, int m, bool stated,
+                   std::vector<PhaseRun>& runs) {
+  RunTally tally;
   double t = 0.0;
   for (std::size_t j = 0; j + 1 < first_segment.size(); ++j) {
     PhaseRun run;
     run.phase = plan.segments[first_segment[j]].phase;
     run.start = t;
-    Counts c{};
+    ModeCounts c{};
     for (auto& ci : c) ci.fill(0);
     for (int s = first_segment[j]; s < first_segment[j + 1]; ++s) {
       run.duration += plan.segments[s].duration;
       for (int i = 0; i < m; ++i)
-        for (int mode = 0; mode < 3; ++mode) c[i][mode] += seg_counts[s][i][mode];
+        for (int mode = 0; mode < 3; ++mode) c[i][mode] += segments.counts[s][i][mode];
     }
     t += run.duration;
     if (stated) run.planned = plan.segments[first_segment[j]].contacts;
-    schedule.runs.push_back(run);
-    counts.push_back(c);
-    xi_start.push_back(xi_at[first_segment[j]]);
-    xi_end.push_back(xi_at[first_segment[j + 1]]);
+    runs.push_back(run);
+    tally.counts.push_back(c);
+    tally.xi_start.push_back(segments.xi_at[first_segment[j]]);
+    tally.xi_end.push_back(segments.xi_at[first_segment[j + 1]]);
   }
+  return tally;
+}
 
-  const int R = static_cast<int>(schedule.runs.size());
-  for (int j = 0; j < R; ++j) {
-    PhaseRun& run = schedule.runs[j];
-    if (stated) {
-      statedRoles(m, xi_start[j], xi_end[j], run);
-      continue;
-    }
-    const auto& cnt = counts[j];
-    auto stickCount = [&](int i) { return cnt[i][static_cast<int>(ContactMode::kStick)]; };
-    for (int i = 0; i < m; ++i) {
-      const int st = cnt[i][static_cast<int>(ContactMode::kStick)];
-      const int sl = cnt[i][static_cast<int>(ContactMode::kSlide)];
-      const int off = cnt[i][static_cast<int>(ContactMode::kSeparated)];
-      run.role[i] = (off >= st + sl) ? ContactRole::kOff
-                                     : (st >= sl ? ContactRole::kStick : ContactRole::kSlide);
-      const double d = wrappedDelta(xi_start[j][i], xi_end[j][i]);
-      run.slide_direction[i] = d > 1e-6 ? 1 : (d < -1e-6 ? -1 : 0);
-      run.slide_rate[i] = std::abs(d) / run.duration;
-    }
-    // Contacts ordered by how often they stuck.
-    std::array<int, kMaxFingers> order{};
-    std::iota(order.begin(), order.begin() + m, 0);
-    std::stable_sort(order.begin(), order.begin() + m,
-                     [&](int a, int b) { return stickCount(a) > stickCount(b); });
-    if (run.phase == Phase::kU) {
-      for (int i = 0; i < m; ++i)
-        if (run.role[i] == ContactRole::kStick) run.role[i] = ContactRole::kSlide;
-    } else if (run.phase == Phase::kP) {
-      for (int i = 0; i < m; ++i)
-        if (run.role[i] == ContactRole::kStick) run.role[i] = ContactRole::kSlide;
-      run.role[order[0]] = ContactRole::kStick;
-    } else {
-      int sticking = 0;
-      for (int i = 0; i < m; ++i) sticking += run.role[i] == ContactRole::kStick;
-      for (int r = 0; r < m && sticking < 2; ++r)
-        if (run.role[order[r]] != ContactRole::kStick) {
-          run.role[order[r]] = ContactRole::kStick;
-          ++sticking;
-        }
-    }
-    for (int i = 0; i < m; ++i) {
-      run.relied[i] = run.role[i] != ContactRole::kOff;
-      if (run.role[i] != ContactRole::kSlide) {
-        run.slide_direction[i] = 0;
-        run.slide_rate[i] = 0.0;
+// Without stated roles, each contact's role by majority of its modes over the run, and the
+// direction and mean rate of its foot point's change from `xi_start` to `xi_end`.
+void majorityRoles(int m, const ModeCounts& cnt, const VecC& xi_start, const VecC& xi_end,
+                   PhaseRun& run) {
+  for (int i = 0; i < m; ++i) {
+    const int st = cnt[i][static_cast<int>(ContactMode::kStick)];
+    const int sl = cnt[i][static_cast<int>(ContactMode::kSlide)];
+    const int off = cnt[i][static_cast<int>(ContactMode::kSeparated)];
+    run.role[i] = (off >= st + sl) ? ContactRole::kOff
+                                   : (st >= sl ? ContactRole::kStick : ContactRole::kSlide);
+    const double d = wrappedDelta(xi_start[i], xi_end[i]);
+    run.slide_direction[i] = d > 1e-6 ? 1 : (d < -1e-6 ? -1 : 0);
+    run.slide_rate[i] = std::abs(d) / run.duration;
+  }
+}
+
+// The majority roles made to agree with the run's letter: C at least two sticking (the most
+// sticking ones), P exactly the one that sticks most, U none sticking (a sticking majority
+// becomes sliding). Every contact that is not off is relied on; only sliders keep a slide.
+void agreeWithLetter(int m, const ModeCounts& cnt, PhaseRun& run) {
+  auto stickCount = [&](int i) { return cnt[i][static_cast<int>(ContactMode::kStick)]; };
+  // Contacts ordered by how often they stuck.
+  std::array<int, kMaxFingers> order{};
+  std::iota(order.begin(), order.begin() + m, 0);
+  std::stable_sort(order.begin(), order.begin() + m,
+                   [&](int a, int b) { return stickCount(a) > stickCount(b); });
+  if (run.phase == Phase::kU) {
+    for (int i = 0; i < m; ++i)
+      if (run.role[i] == ContactRole::kStick) run.role[i] = ContactRole::kSlide;
+  } else if (run.phase == Phase::kP) {
+    for (int i = 0; i < m; ++i)
+      if (run.role[i] == ContactRole::kStick) run.role[i] = ContactRole::kSlide;
+    run.role[order[0]] = ContactRole::kStick;
+  } else {
+    int sticking = 0;
+    for (int i = 0; i < m; ++i) sticking += run.role[i] == ContactRole::kStick;
+    for (int r = 0; r < m && sticking < 2; ++r)
+      if (run.role[order[r]] != ContactRole::kStick) {
+        run.role[order[r]] = ContactRole::kStick;
+        ++sticking;
       }
+  }
+  for (int i = 0; i < m; ++i) {
+    run.relied[i] = run.role[i] != ContactRole::kOff;
+    if (run.role[i] != ContactRole::kSlide) {
+      run.slide_direction[i] = 0;
+      run.slide_rate[i] = 0.0;
     }
   }
+}
 
-  if (intervals < 2 * R) {
-    why = "settings.knots = " + std::to_string(intervals) + " is fewer than 2 per phase run (" +
-          std::to_string(R) + " runs)";
-    return false;
-  }
-  // 2 per run, the rest in proportion to duration (largest remainder).
-  const double total = plan.duration();
+// `intervals` (at least 2 per run) spread over the runs: 2 each, the rest in proportion to
+// their durations over `total` (largest remainder); each run's first interval and the
+// interval -> run map.
+void spreadIntervals(int intervals, double total, Schedule& schedule) {
+  const int R = static_cast<int>(schedule.runs.size());
   const int spare = intervals - 2 * R;
   std::vector<double> share(R), frac(R);
   int given = 0;
@@ -237,7 +255,50 @@ bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals
     for (int k = 0; k < schedule.runs[j].intervals; ++k) schedule.run_of_interval.push_back(j);
     first += schedule.runs[j].intervals;
   }
-  return true;
+}
+
+// A failed build: no schedule, and why.
+ScheduleResult failure(std::string error) {
+  ScheduleResult result;
+  result.error = std::move(error);
+  return result;
+}
+
+}  // namespace
+
+ContactRole Schedule::knotRole(int knot, int i) const {
+  ContactRole r = ContactRole::kOff;
+  if (knot > 0) r = role(knot - 1, i);
+  if (knot < intervals() && strength(role(knot, i)) > strength(r)) r = role(knot, i);
+  return r;
+}
+
+ScheduleResult buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals,
+                             RunCut cut) {
+  const int m = model.numFingers();
+  const bool stated = cut == RunCut::kStatedRoles;
+  std::string error = planError(plan, cut);
+  if (!error.empty()) return failure(std::move(error));
+  ScheduleResult result;
+  Schedule& schedule = result.schedule;
+  const SegmentTally segments = resimulate(model, plan, schedule.steps);
+  const std::vector<int> first_segment = cutRuns(plan, segments.counts, m, cut, intervals);
+  const RunTally runs = mergeRuns(plan, segments, first_segment, m, stated, schedule.runs);
+  const int R = static_cast<int>(schedule.runs.size());
+  for (int j = 0; j < R; ++j) {
+    PhaseRun& run = schedule.runs[j];
+    if (stated) {
+      statedRoles(m, runs.xi_start[j], runs.xi_end[j], run);
+      continue;
+    }
+    majorityRoles(m, runs.counts[j], runs.xi_start[j], runs.xi_end[j], run);
+    agreeWithLetter(m, runs.counts[j], run);
+  }
+  if (intervals < 2 * R)
+    return failure("settings.knots = " + std::to_string(intervals) +
+                   " is fewer than 2 per phase run (" + std::to_string(R) + " runs)");
+  spreadIntervals(intervals, plan.duration(), schedule);
+  return result;
 }
 
 }  // namespace rbsf::trajopt

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "rbsf/trajopt/collocation_constraint.h"
 #include "rbsf/trajopt/contact_constraint.h"
@@ -19,7 +20,10 @@ TrajectoryProblem::TrajectoryProblem(const RbsfModel& model, const plan::Plan& p
   const RunCut cut = settings.stated_roles                  ? RunCut::kStatedRoles
                      : settings.split_runs_by_contact_modes ? RunCut::kContactModes
                                                             : RunCut::kPhaseLetters;
-  ok_ = buildSchedule(model, plan, settings.knots, cut, schedule_, why_);
+  ScheduleResult built = buildSchedule(model, plan, settings.knots, cut);
+  ok_ = built.ok();
+  why_ = std::move(built.error);
+  schedule_ = std::move(built.schedule);
   if (!ok_) return;
   layout_ = std::make_unique<DecisionLayout>(model.numFingers(), schedule_.intervals(),
                                              static_cast<int>(schedule_.runs.size()));

@@ -159,7 +159,11 @@ class SupportSearch {
   const SupportSearchSettings& settings() const { return settings_; }
 
  private:
+  /// \brief A node of a search tree (support_search_run.h).
   struct Node;
+  /// \brief One search() in progress: its trees, open lists and best path, and its steps
+  ///        (support_search_run.h).
+  class Run;
   /// \brief A lattice cell and a contact set.
   using CellKey = std::array<std::int32_t, 6>;
   /// \brief FNV-1a over a CellKey.

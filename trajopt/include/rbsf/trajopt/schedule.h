@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
 #include <vector>
 
 #include "rbsf/dynamics/core/contact_roles.h"
@@ -72,21 +73,31 @@ enum class RunCut {
   kStatedRoles,   ///< where the roles the plan states change (contact_roles.h)
 };
 
-/// \brief Re-simulate the plan's segments (with the plan's simulator settings) and group them into
-/// runs. RunCut::kStatedRoles (a plan whose segments all state their contacts' roles, as
-/// support plans do) cuts where the roles change and keeps them: S sticks, + and - slide
-/// (the way the re-simulation slid), F sticks without being relied on (PhaseRun::relied
-/// false: no normal floor), L is off; the
-/// letter follows the sticking count. Otherwise runs are consecutive segments of one phase
-///        letter and, with kContactModes, the same majority mode of every
-///        contact over the segment (a P run in which a third finger lands becomes two P
-///        runs); when that gives more than intervals / 2 runs, by letter alone. Count each
-///        contact's mode per run and pick its role by majority, then make it agree with the
-///        run's letter: C at least two sticking (the most sticking ones), P exactly the one
-///        that sticks most, U none sticking (a sticking majority becomes sliding). Spread
-///        `intervals` over the runs in proportion to their durations, at least 2 each.
-/// \return false (with `why`) when intervals < 2 runs or the plan has no segments.
-bool buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals, RunCut cut,
-                   Schedule& schedule, std::string& why);
+/// \brief What buildSchedule gives: the schedule, or why the plan gives none.
+struct ScheduleResult {
+  Schedule schedule;  ///< the runs and their intervals; empty when not ok()
+  std::string error;  ///< why there is no schedule; empty when ok()
+  /// \brief Whether the schedule was built (no error).
+  bool ok() const { return error.empty(); }
+};
+
+/// \brief Re-simulate the plan's segments (with the plan's simulator settings) and group
+///        them into runs. RunCut::kStatedRoles (a plan whose segments all state their
+///        contacts' roles, as support plans do) cuts where the roles change and keeps them:
+///        S sticks, + and - slide (the way the re-simulation slid), F sticks without being
+///        relied on (PhaseRun::relied false: no normal floor), L is off; the letter follows
+///        the sticking count. Otherwise runs are consecutive segments of one phase letter
+///        and, with kContactModes, the same majority mode of every contact over the segment
+///        (a P run in which a third finger lands becomes two P runs); when that gives more
+///        than intervals / 2 runs, by letter alone. Count each contact's mode per run and
+///        pick its role by majority, then make it agree with the run's letter: C at least two
+///        sticking (the most sticking ones), P exactly the one that sticks most, U none
+///        sticking (a sticking majority becomes sliding). Spread `intervals` over the runs in
+///        proportion to their durations, at least 2 each.
+/// \return the schedule, or an error when the plan has no segments, a segment holds no
+///         simulator step, kStatedRoles meets a segment that states no roles, or intervals
+///         < 2 runs.
+ScheduleResult buildSchedule(const RbsfModel& model, const plan::Plan& plan, int intervals,
+                             RunCut cut);
 
 }  // namespace rbsf::trajopt
