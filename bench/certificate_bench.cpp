@@ -22,7 +22,7 @@
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
-#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/kinodynamic/reorientation_planner.h"
 #include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/trajopt/plan_optimizer.h"

@@ -17,7 +17,7 @@
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"
-#include "rbsf/planner/support_planner.h"
+#include "rbsf/planner/support/support_planner.h"
 
 namespace rbsf::controller {
 namespace {

@@ -20,7 +20,7 @@
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"
-#include "rbsf/planner/hold_plan.h"
+#include "rbsf/planner/support/hold_plan.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
 

@@ -9,7 +9,7 @@
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/core/placement.h"
 #include "rbsf/dynamics/io/cell_file.h"
-#include "rbsf/planner/phase_targets.h"
+#include "rbsf/planner/kinodynamic/phase_targets.h"
 
 namespace rbsf {
 namespace {

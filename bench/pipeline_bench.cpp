@@ -20,7 +20,7 @@
 #include "rbsf/bench/problem_suite.h"
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/io/cell_file.h"
-#include "rbsf/planner/reorientation_pipeline.h"
+#include "rbsf/planner/pipeline/reorientation_pipeline.h"
 #include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/trajopt/plan_refinement.h"

@@ -22,8 +22,8 @@
 #include "bench_stats.h"
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/io/cell_file.h"
-#include "rbsf/planner/refine_and_certify.h"
-#include "rbsf/planner/support_planner.h"
+#include "rbsf/planner/pipeline/refine_and_certify.h"
+#include "rbsf/planner/support/support_planner.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/trajopt/plan_refinement.h"
 

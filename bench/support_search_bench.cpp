@@ -12,8 +12,8 @@
 
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/io/cell_file.h"
-#include "rbsf/planner/support_planner.h"
-#include "rbsf/planner/support_search.h"
+#include "rbsf/planner/support/support_planner.h"
+#include "rbsf/planner/support/support_search.h"
 
 namespace rbsf {
 namespace {

@@ -27,7 +27,7 @@
 #include "bench_stats.h"
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/io/cell_file.h"
-#include "rbsf/planner/reorientation_pipeline.h"
+#include "rbsf/planner/pipeline/reorientation_pipeline.h"
 #include "rbsf/tools/tool_main.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 #include "rbsf/trajopt/plan_refinement.h"

@@ -30,32 +30,41 @@ MODULES = {
     "dynamics/io": "dynamics",
     "plan": "plan",
     "trajopt": "trajopt",
-    "planner": "planner",
+    "planner/base": "planner",
+    "planner/support": "planner",
+    "planner/kinodynamic": "planner",
+    "planner/pipeline": "planner",
     "controller": "controller",
     "tools": "tools/common",
     "bench": "tools/bench",
 }
 DYNAMICS = {"dynamics/core", "dynamics/control", "dynamics/io"}
+PLANNER = {"planner/base", "planner/support", "planner/kinodynamic", "planner/pipeline"}
 ALLOWED = {
     "dynamics/core": set(),
     "dynamics/control": {"dynamics/core"},
     "dynamics/io": {"dynamics/core"},
     "plan": DYNAMICS,
     "trajopt": DYNAMICS | {"plan"},
-    "planner": DYNAMICS | {"plan", "trajopt"},
-    "controller": DYNAMICS | {"plan", "trajopt", "planner"},
-    "tools": DYNAMICS | {"plan", "trajopt", "planner"},
-    "bench": DYNAMICS | {"plan", "trajopt", "planner", "tools"},
+    "planner/base": DYNAMICS | {"plan"},
+    "planner/support": DYNAMICS | {"plan", "planner/base"},
+    "planner/kinodynamic": DYNAMICS | {"plan", "planner/base"},
+    "planner/pipeline": DYNAMICS | {"plan", "trajopt"} | PLANNER - {"planner/pipeline"},
+    "controller": DYNAMICS | PLANNER | {"plan", "trajopt"},
+    "tools": DYNAMICS | PLANNER | {"plan", "trajopt"},
+    "bench": DYNAMICS | PLANNER | {"plan", "trajopt", "tools"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.M)
 
 
 def part_of(module, path):
     """A module in parts ("dynamics/core"): whether `path` lies in the part's subfolder of
-    include/rbsf/<x>/ or src/."""
+    include/rbsf/<x>/ or src/; the part "base" holds the files beside the subfolders."""
     if "/" not in module:
         return True
     part = module.split("/", 1)[1]
+    if part == "base":
+        return re.search(r"/(include/rbsf/[^/]+|src)/[^/]+$", path) is not None
     return re.search(r"/(include/rbsf/[^/]+|src)/" + re.escape(part) + "/", path) is not None
 
 

@@ -10,7 +10,7 @@
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/core/holding.h"
 #include "rbsf/dynamics/io/cell_file.h"
-#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/kinodynamic/reorientation_planner.h"
 
 namespace rbsf {
 namespace {

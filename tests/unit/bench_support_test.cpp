@@ -13,7 +13,7 @@
 #include "rbsf/bench/run_list.h"
 #include "rbsf/bench/summary.h"
 #include "rbsf/dynamics/core/errors.h"
-#include "rbsf/planner/goal.h"
+#include "rbsf/planner/kinodynamic/goal.h"
 
 namespace rbsf::bench {
 namespace {

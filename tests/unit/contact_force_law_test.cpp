@@ -16,10 +16,10 @@
 #include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"
-#include "rbsf/planner/hold_plan.h"
-#include "rbsf/planner/support_planner.h"
-#include "rbsf/planner/support_search.h"
-#include "rbsf/planner/support_trajectory.h"
+#include "rbsf/planner/support/hold_plan.h"
+#include "rbsf/planner/support/support_planner.h"
+#include "rbsf/planner/support/support_search.h"
+#include "rbsf/planner/support/support_trajectory.h"
 
 namespace rbsf {
 namespace {

@@ -13,7 +13,7 @@
 #include "rbsf/dynamics/core/errors.h"
 #include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
-#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/kinodynamic/reorientation_planner.h"
 #include "sim_test_support.h"
 
 namespace rbsf::planner {

@@ -16,7 +16,7 @@
 #include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"
-#include "rbsf/planner/support_planner.h"
+#include "rbsf/planner/support/support_planner.h"
 #include "trajopt_support.h"
 
 namespace rbsf {

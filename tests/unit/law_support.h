@@ -8,7 +8,7 @@
 #include "rbsf/dynamics/core/placement.h"
 #include "rbsf/dynamics/core/rollout.h"
 #include "rbsf/plan/plan.h"
-#include "rbsf/planner/hold_plan.h"
+#include "rbsf/planner/support/hold_plan.h"
 #include "test_support.h"
 
 namespace rbsf::test {

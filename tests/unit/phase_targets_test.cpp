@@ -10,7 +10,7 @@
 
 #include "rbsf/dynamics/core/forward_dynamics.h"
 #include "rbsf/dynamics/core/stick_dynamics.h"
-#include "rbsf/planner/phase_targets.h"
+#include "rbsf/planner/kinodynamic/phase_targets.h"
 #include "test_support.h"
 
 namespace rbsf {

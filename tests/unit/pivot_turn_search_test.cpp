@@ -12,8 +12,8 @@
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/dynamics/io/cell_file.h"
-#include "rbsf/planner/pivot_turn_search.h"
-#include "rbsf/planner/support_planner.h"
+#include "rbsf/planner/support/pivot_turn_search.h"
+#include "rbsf/planner/support/support_planner.h"
 #include "support_path_checks.h"
 
 namespace rbsf::planner {

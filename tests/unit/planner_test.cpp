@@ -16,10 +16,10 @@
 #include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/plan_file.h"
 #include "rbsf/plan/plan_reference.h"
-#include "rbsf/planner/goal.h"
-#include "rbsf/planner/planner_setup.h"
-#include "rbsf/planner/reorientation_planner.h"
-#include "rbsf/planner/state_space.h"
+#include "rbsf/planner/kinodynamic/goal.h"
+#include "rbsf/planner/kinodynamic/planner_setup.h"
+#include "rbsf/planner/kinodynamic/reorientation_planner.h"
+#include "rbsf/planner/kinodynamic/state_space.h"
 
 namespace rbsf::planner {
 using namespace rbsf::plan;  // the plan the planner makes

@@ -15,7 +15,7 @@
 #include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/confidence.h"
 #include "rbsf/plan/plan_holding.h"
-#include "rbsf/planner/reorientation_pipeline.h"
+#include "rbsf/planner/pipeline/reorientation_pipeline.h"
 
 namespace rbsf::planner {
 using namespace rbsf::plan;  // the plan the planner makes

@@ -14,8 +14,8 @@
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/dynamics/io/cell_file.h"
-#include "rbsf/planner/reorientation_planner.h"
-#include "rbsf/planner/support_ompl_planner.h"
+#include "rbsf/planner/kinodynamic/reorientation_planner.h"
+#include "rbsf/planner/pipeline/support_ompl_planner.h"
 
 namespace rbsf::planner {
 namespace {

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "rbsf/planner/support_search.h"
+#include "rbsf/planner/support/support_search.h"
 
 namespace rbsf::planner {
 

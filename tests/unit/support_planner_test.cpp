@@ -16,8 +16,8 @@
 #include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/plan_holding.h"
 #include "rbsf/plan/plan_motion.h"
-#include "rbsf/planner/support_planner.h"
-#include "rbsf/planner/support_trajectory.h"
+#include "rbsf/planner/support/support_planner.h"
+#include "rbsf/planner/support/support_trajectory.h"
 #include "support_path_checks.h"
 
 namespace rbsf::planner {

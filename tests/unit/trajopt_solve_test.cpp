@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "rbsf/dynamics/core/errors.h"
-#include "rbsf/planner/refine_and_certify.h"
+#include "rbsf/planner/pipeline/refine_and_certify.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 #include "rbsf/trajopt/plan_refinement.h"
 #include "rbsf/trajopt/trajectory_problem.h"

@@ -11,7 +11,7 @@
 #include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/plan.h"
-#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/kinodynamic/reorientation_planner.h"
 
 namespace rbsf::trajopt::test {
 

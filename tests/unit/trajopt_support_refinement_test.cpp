@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "rbsf/plan/certificate.h"
-#include "rbsf/planner/refine_and_certify.h"
-#include "rbsf/planner/support_planner.h"
+#include "rbsf/planner/pipeline/refine_and_certify.h"
+#include "rbsf/planner/support/support_planner.h"
 #include "rbsf/trajopt/plan_refinement.h"
 #include "trajopt_support.h"
 

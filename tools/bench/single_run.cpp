@@ -13,8 +13,8 @@
 
 #include "rbsf/bench/benchmark_log.h"
 #include "rbsf/dynamics/io/atomic_file.h"
-#include "rbsf/planner/refine_and_certify.h"
-#include "rbsf/planner/support_ompl_planner.h"
+#include "rbsf/planner/pipeline/refine_and_certify.h"
+#include "rbsf/planner/pipeline/support_ompl_planner.h"
 #include "rbsf/trajopt/plan_optimizer.h"
 #include "rbsf/trajopt/plan_refinement.h"
 

@@ -11,7 +11,7 @@
 #include "rbsf/dynamics/core/errors.h"
 #include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/dynamics/io/atomic_file.h"
-#include "rbsf/planner/goal.h"
+#include "rbsf/planner/kinodynamic/goal.h"
 #include "rbsf/tools/html_report.h"
 #include "rbsf/tools/run_files.h"
 #include "rbsf/tools/svg_animation.h"

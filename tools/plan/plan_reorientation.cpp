@@ -1,6 +1,6 @@
 // plan-reorientation: torques tau(t) that take the part from where it rests to a goal pose.
 // Plan, refine and certify until a plan certifies or the time limit is spent
-// (rbsf/planner/reorientation_pipeline.h): the support planner, then the kinodynamic
+// (rbsf/planner/pipeline/reorientation_pipeline.h): the support planner, then the kinodynamic
 // planner seed after seed; each exact kinodynamic plan refined by the trajectory optimiser
 // unless --no-optimize (rbsf/trajopt/plan_refinement.h); every plan run closed loop under
 // the cell's sensing and uncertainty and judged by the lower confidence bound of its
@@ -29,7 +29,7 @@
 #include "rbsf/dynamics/core/errors.h"
 #include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
-#include "rbsf/planner/reorientation_pipeline.h"
+#include "rbsf/planner/pipeline/reorientation_pipeline.h"
 #include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/interrupt.h"

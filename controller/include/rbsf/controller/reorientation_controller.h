@@ -44,8 +44,8 @@
 #include "rbsf/dynamics/core/placement.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_file.h"
+#include "rbsf/planner/pipeline/reorientation_pipeline.h"
 #include "rbsf/planner/planner_settings.h"
-#include "rbsf/planner/reorientation_pipeline.h"
 #include "rbsf/trajopt/optimizer_settings.h"
 
 namespace rbsf::controller {

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "rbsf/planner/reorientation_planner.h"
+#include "rbsf/planner/kinodynamic/reorientation_planner.h"
 
 namespace rbsf::bench {
 
