@@ -80,8 +80,6 @@ int run(int argc, char** argv) {
       rbsf::planner::PlannerSettings ps;
       ps.seed = static_cast<std::uint32_t>(seed);
       ps.time_limit = time_limit;
-      ps.position_tolerance = bp.position_tolerance;
-      ps.angle_tolerance = bp.angle_tolerance;
       rbsf::planner::ReorientationPlanner planner(model, ps);
       rbsf::plan::Plan plan;
       if (!planner.solve(bp.problem, plan) || plan.status != rbsf::plan::PlanStatus::kExact) {
@@ -94,8 +92,8 @@ int run(int argc, char** argv) {
       const rbsf::trajopt::OptimizedPlan refined =
           rbsf::trajopt::PlanOptimizer(model, os).optimize(plan);
       rbsf::plan::CertificateSettings cs = base;
-      cs.trial.position_tolerance = bp.position_tolerance;
-      cs.trial.angle_tolerance = bp.angle_tolerance;
+      cs.trial.position_tolerance = bp.problem.tolerance.position;
+      cs.trial.angle_tolerance = bp.problem.tolerance.angle;
       Row row;
       rbsf::plan::Certificate worst;
       for (int kind = 0; kind < 2; ++kind) {

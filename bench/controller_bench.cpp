@@ -191,8 +191,7 @@ void BM_ControllerSampleWhilePlanning(benchmark::State& state) {
   VecQ q0;
   c.publishedPlan(duration, q0);
   ReorientationRequest endless = turn(-90.0, 1);
-  endless.planner.position_tolerance = 1e-6;
-  endless.planner.angle_tolerance = 1e-6;
+  endless.problem.tolerance = {1e-6, 1e-6};
   endless.planner.time_limit = 600.0;
   if (!c.plan(endless)) std::abort();
   ReferenceSample ref;

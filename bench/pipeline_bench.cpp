@@ -80,8 +80,6 @@ int run(int argc, char** argv) {
         rbsf::planner::PipelineSettings s;
         s.planner.seed = static_cast<std::uint32_t>(seed);
         s.planner.time_limit = time_limit;
-        s.planner.position_tolerance = bp.position_tolerance;
-        s.planner.angle_tolerance = bp.angle_tolerance;
         s.certificate = base;
         if (margins == "zero") {
           s.support.friction_uses = {1.0};

@@ -134,8 +134,8 @@ planner::PipelineSettings ReorientationController::Impl::pipelineSettings(
   pipeline.method = request.method;
   pipeline.max_attempts = request.max_attempts;
   pipeline.planner = request.planner;
-  pipeline.feedback = feedback;
   pipeline.certificate = request.certificate;
+  pipeline.certificate.feedback = feedback;
   pipeline.optimize = request.optimize;
   pipeline.optimizer = request.optimizer;
   return pipeline;

@@ -7,6 +7,44 @@
 
 namespace rbsf::planner {
 
+const std::array<KinodynamicPlanner, 5>& kinodynamicPlanners() {
+  static const std::array<KinodynamicPlanner, 5> all = {
+      KinodynamicPlanner::kKPIECE1, KinodynamicPlanner::kRRT, KinodynamicPlanner::kSST,
+      KinodynamicPlanner::kEST, KinodynamicPlanner::kPDST};
+  return all;
+}
+
+const char* toString(KinodynamicPlanner planner) {
+  switch (planner) {
+    case KinodynamicPlanner::kKPIECE1:
+      return "KPIECE1";
+    case KinodynamicPlanner::kRRT:
+      return "RRT";
+    case KinodynamicPlanner::kSST:
+      return "SST";
+    case KinodynamicPlanner::kEST:
+      return "EST";
+    case KinodynamicPlanner::kPDST:
+      return "PDST";
+  }
+  return "?";
+}
+
+std::optional<KinodynamicPlanner> parsePlanner(std::string_view name) {
+  for (KinodynamicPlanner p : kinodynamicPlanners())
+    if (name == toString(p)) return p;
+  return std::nullopt;
+}
+
+const std::vector<std::string>& plannerNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (KinodynamicPlanner p : kinodynamicPlanners()) out.emplace_back(toString(p));
+    return out;
+  }();
+  return names;
+}
+
 void checkSettings(const DecisiveModes& rule) {
   if (rule.settle_steps < 0)
     throw InputError("decisive modes: settle_steps must be >= 0 (got " +
@@ -17,17 +55,22 @@ void checkSettings(const DecisiveModes& rule) {
 }
 
 void checkSettings(const PlannerSettings& s) {
-  const auto& names = plannerNames();
-  if (std::find(names.begin(), names.end(), s.planner) == names.end())
-    throw InputError("unknown planner '" + s.planner + "' (choose KPIECE1, RRT, SST, EST or PDST)");
+  const auto& all = kinodynamicPlanners();
+  if (std::find(all.begin(), all.end(), s.planner) == all.end())
+    throw InputError("unknown planner " + std::to_string(static_cast<int>(s.planner)) +
+                     " (choose KPIECE1, RRT, SST, EST or PDST)");
   if (!(s.time_limit > 0.0) || !std::isfinite(s.time_limit))
     throw InputError("time limit: must be positive and finite");
   if (s.steps_per_control < 1 || s.min_control_steps < 1 ||
       s.max_control_steps < s.min_control_steps || s.sample_steps < 1)
     throw InputError("control steps must be positive and ordered");
-  if (!(s.position_tolerance > 0.0) || !(s.angle_tolerance > 0.0))
-    throw InputError("goal tolerances must be positive");
   checkSettings(s.decisive_modes);
+}
+
+void checkTolerance(const GoalTolerance& t) {
+  if (!(t.position > 0.0) || !(t.angle > 0.0) || !std::isfinite(t.position) ||
+      !std::isfinite(t.angle))
+    throw InputError("goal tolerances must be positive and finite");
 }
 
 }  // namespace rbsf::planner

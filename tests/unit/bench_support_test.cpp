@@ -164,7 +164,7 @@ TEST(ProblemSuite, ShippedSuitesLoad) {
   ASSERT_EQ(def.size(), 3u);
   EXPECT_EQ(def[2].name, "180deg");
   EXPECT_NEAR(def[2].problem.goal.phi, M_PI, 1e-15);
-  EXPECT_NEAR(def[0].angle_tolerance, 2.0 * M_PI / 180, 1e-15);
+  EXPECT_NEAR(def[0].problem.tolerance.angle, 2.0 * M_PI / 180, 1e-15);
   EXPECT_EQ(def[0].cell_path, RBSF_SOURCE_DIR "/cells/default.yaml");
   const auto quarter = loadProblemSuite(RBSF_SOURCE_DIR "/cells/problems/quarter.yaml");
   ASSERT_EQ(quarter.size(), 2u);

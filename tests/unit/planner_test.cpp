@@ -289,8 +289,12 @@ TEST_F(PlannerTest, UnholdableStartAndUnreachableGoalAreRefused) {
     EXPECT_NE(std::string(e.what()).find("out of reach: no finger"), std::string::npos) << e.what();
   }
   PlannerSettings bad = testSettings(1);
-  bad.planner = "PRM";
+  bad.planner = static_cast<KinodynamicPlanner>(99);  // not a planner
   EXPECT_THROW(ReorientationPlanner(model, bad), InputError);
+  // Names: OMPL's, read back; others are not planners.
+  for (KinodynamicPlanner p : kinodynamicPlanners()) EXPECT_EQ(parsePlanner(toString(p)), p);
+  EXPECT_FALSE(parsePlanner("PRM").has_value());
+  EXPECT_FALSE(parsePlanner("kpiece1").has_value());
 }
 
 TEST_F(PlannerTest, UnholdableStartOfAWeakCellIsRefused) {

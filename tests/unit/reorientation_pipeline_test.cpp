@@ -160,7 +160,7 @@ TEST(ReorientationPipeline, BadSettingsAndProblemsAreInputErrors) {
   s.planner.time_limit = 0.0;
   EXPECT_THROW(ReorientationPipeline(model, s), InputError);
   s = {};
-  s.planner.planner = "PRM";
+  s.planner.planner = static_cast<KinodynamicPlanner>(99);
   EXPECT_THROW(ReorientationPipeline(model, s), InputError);
   s = {};
   s.support_share = 0.0;

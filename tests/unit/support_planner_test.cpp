@@ -393,19 +393,20 @@ TEST(SupportPlanner, PathsWhoseRunsMissTheGoalAreBlockedAndTheLongestRunningIsKe
   const RbsfModel& model = defaultModel();
   SupportPlannerSettings s;
   s.friction_uses = {0.45};
-  s.position_tolerance = 1e-12;
   s.time_limit = 20.0;
   s.max_paths = 3;
   Problem problem;
   problem.start = kStart;
   problem.goal = kTurn15;
+  problem.tolerance.position = 1e-12;
   SupportPlanner planner(model, s);
   Plan plan;
   ASSERT_TRUE(planner.solve(problem, plan)) << planner.message();
   EXPECT_EQ(planner.pathsRun(), 3);
   EXPECT_EQ(plan.status, plan::PlanStatus::kApproximate);
   EXPECT_EQ(plan.planner, "support");
-  // With the default bound the first path runs and is kept, exact.
+  // With the default tolerance the first path runs and is kept, exact.
+  problem.tolerance = GoalTolerance{};
   SupportPlanner defaults(model, SupportPlannerSettings{});
   ASSERT_TRUE(defaults.solve(problem, plan)) << defaults.message();
   EXPECT_EQ(defaults.pathsRun(), 1);

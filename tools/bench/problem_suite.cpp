@@ -64,11 +64,11 @@ BenchProblem readProblem(const YamlReader& rd, const YAML::Node& n, const std::s
     rd.mapping(t, tp, {"position", "angle"});
     const std::string pp = YamlReader::join(tp, "position"), ap = YamlReader::join(tp, "angle");
     if (const YAML::Node v = rd.get(t, tp, "position", false); v.IsDefined())
-      p.position_tolerance = tools::parseNumber(rd.text(v, pp), rd.prefix + pp);
+      p.problem.tolerance.position = tools::parseNumber(rd.text(v, pp), rd.prefix + pp);
     if (const YAML::Node v = rd.get(t, tp, "angle", false); v.IsDefined())
-      p.angle_tolerance = tools::parseAngle(rd.text(v, ap), rd.prefix + ap);
-    rd.positive(p.position_tolerance, pp);
-    rd.positive(p.angle_tolerance, ap);
+      p.problem.tolerance.angle = tools::parseAngle(rd.text(v, ap), rd.prefix + ap);
+    rd.positive(p.problem.tolerance.position, pp);
+    rd.positive(p.problem.tolerance.angle, ap);
   }
   return p;
 }

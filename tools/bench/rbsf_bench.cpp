@@ -191,10 +191,7 @@ int runBenchmarks(const Options& o) {
     auto& m = models[p.cell_path];
     try {
       if (!m) m = std::make_unique<RbsfModel>(loadCell(p.cell_path));
-      planner::PlannerSettings s;
-      s.position_tolerance = p.position_tolerance;
-      s.angle_tolerance = p.angle_tolerance;
-      planner::ReorientationPlanner(*m, s).checkProblem(p.problem);
+      planner::ReorientationPlanner(*m, planner::PlannerSettings{}).checkProblem(p.problem);
     } catch (const InputError& e) {
       throw InputError(o.problems + ": problem " + p.name + ": " + e.what());
     }

@@ -51,15 +51,14 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
   // (support_ompl_planner.h); the setup's own planner is then replaced.
   const bool support = spec.planner == kSupportPlanner;
   planner::PlannerSettings s;
-  s.planner = support ? "KPIECE1" : spec.planner;
+  s.planner =
+      support ? planner::KinodynamicPlanner::kKPIECE1 : *planner::parsePlanner(spec.planner);
   if (support) {
     s.steps_per_control = planner::SupportOmplPlanner::kControlSteps;
     s.decisive_modes.enabled = false;
   }
   s.time_limit = rs.time_limit;
   s.seed = spec.seed;
-  s.position_tolerance = bp.position_tolerance;
-  s.angle_tolerance = bp.angle_tolerance;
   planner::ReorientationPlanner rp(model, s);
   const planner::PlannerSetup setup = rp.setup(bp.problem);
   oc::SimpleSetup& ss = *setup.simple_setup;

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -216,9 +217,8 @@ void addStageOptions(CLI::App& app, Options& o) {
 
 /// The pipeline's settings from the options. \throws InputError naming a bad option.
 planner::PipelineSettings pipelineSettings(const Options& o) {
-  const auto& names = planner::plannerNames();
-  if (o.planner != "auto" && o.planner != "support" &&
-      std::find(names.begin(), names.end(), o.planner) == names.end())
+  const std::optional<planner::KinodynamicPlanner> kinodynamic = planner::parsePlanner(o.planner);
+  if (o.planner != "auto" && o.planner != "support" && !kinodynamic)
     throw InputError("--planner: unknown planner '" + o.planner +
                      "' (choose from auto, support, KPIECE1, RRT, SST, EST, PDST)");
   using Method = planner::PipelineMethod;
@@ -227,7 +227,7 @@ planner::PipelineSettings pipelineSettings(const Options& o) {
                     : o.planner == "support" ? Method::kSupport
                                              : Method::kKinodynamic;
   planner::PlannerSettings& settings = pipeline.planner;
-  settings.planner = pipeline.method == Method::kKinodynamic ? o.planner : "KPIECE1";
+  settings.planner = kinodynamic.value_or(planner::KinodynamicPlanner::kKPIECE1);
   settings.decisive_modes.enabled = !o.no_decisive_modes;
   settings.time_limit = parseNumber(o.time_limit, "--time-limit");
   if (!(settings.time_limit > 0.0 && settings.time_limit <= 1e6))

@@ -23,14 +23,21 @@ ompl::base::PlannerPtr withGoalBias(const oc::SpaceInformationPtr& si, double go
 
 }  // namespace
 
-ompl::base::PlannerPtr makeControlPlanner(const std::string& name,
+ompl::base::PlannerPtr makeControlPlanner(KinodynamicPlanner planner,
                                           const oc::SpaceInformationPtr& si, double goal_bias) {
-  if (name == "KPIECE1") return withGoalBias<oc::KPIECE1>(si, goal_bias);
-  if (name == "RRT") return withGoalBias<oc::RRT>(si, goal_bias);
-  if (name == "SST") return withGoalBias<oc::SST>(si, goal_bias);
-  if (name == "EST") return withGoalBias<oc::EST>(si, goal_bias);
-  if (name == "PDST") return withGoalBias<oc::PDST>(si, goal_bias);
-  throw InputError("unknown planner '" + name + "' (choose KPIECE1, RRT, SST, EST or PDST)");
+  switch (planner) {
+    case KinodynamicPlanner::kKPIECE1:
+      return withGoalBias<oc::KPIECE1>(si, goal_bias);
+    case KinodynamicPlanner::kRRT:
+      return withGoalBias<oc::RRT>(si, goal_bias);
+    case KinodynamicPlanner::kSST:
+      return withGoalBias<oc::SST>(si, goal_bias);
+    case KinodynamicPlanner::kEST:
+      return withGoalBias<oc::EST>(si, goal_bias);
+    case KinodynamicPlanner::kPDST:
+      return withGoalBias<oc::PDST>(si, goal_bias);
+  }
+  throw InputError("unknown planner (choose KPIECE1, RRT, SST, EST or PDST)");
 }
 
 }  // namespace rbsf::planner

@@ -27,11 +27,6 @@ namespace rbsf::planner {
 namespace ob = ompl::base;
 namespace oc = ompl::control;
 
-const std::vector<std::string>& plannerNames() {
-  static const std::vector<std::string> names = {"KPIECE1", "RRT", "SST", "EST", "PDST"};
-  return names;
-}
-
 namespace {
 
 std::string poseText(const Pose& p) {
@@ -48,6 +43,7 @@ ReorientationPlanner::ReorientationPlanner(const RbsfModel& model, PlannerSettin
 }
 
 VecQ ReorientationPlanner::checkProblem(const Problem& problem) const {
+  checkTolerance(problem.tolerance);
   const Cell& cell = model_.cell();
   if (problem.start_theta < cell.base.theta_min || problem.start_theta > cell.base.theta_max)
     throw InputError("--start-theta is outside the base range");
@@ -144,8 +140,9 @@ PlannerSetup ReorientationPlanner::setup(const Problem& problem) const {
   out.space->fromSim(SimState(out.q0, VecQ::Zero(out.q0.size())), start);
   out.simple_setup->getProblemDefinition()->addStartState(start);
   si->freeState(start);
-  out.goal = std::make_shared<PoseGoal>(si, problem.goal, s.position_tolerance, s.angle_tolerance,
-                                        *out.checker, problem.absolute_angle);
+  out.goal =
+      std::make_shared<PoseGoal>(si, problem.goal, problem.tolerance.position,
+                                 problem.tolerance.angle, *out.checker, problem.absolute_angle);
   out.simple_setup->setGoal(out.goal);
   out.simple_setup->setPlanner(std::make_shared<StopAtGoalPlanner>(
       makeControlPlanner(s.planner, si, s.goal_bias), out.goal));
@@ -193,7 +190,7 @@ bool ReorientationPlanner::makePlan(const Problem& problem, const PlannerSetup& 
   plan = plan::Plan();
   plan.status =
       pdef->hasExactSolution() ? plan::PlanStatus::kExact : plan::PlanStatus::kApproximate;
-  plan.planner = s.planner;
+  plan.planner = toString(s.planner);
   plan.seed = s.seed;
   plan.planning_time = planning_time;
   plan.propagations = setup.propagator->propagations();
@@ -230,9 +227,9 @@ bool ReorientationPlanner::makePlan(const Problem& problem, const PlannerSetup& 
   const VecQ& qf = ends.empty() ? q0 : ends.back().q;
   plan.goal_distance = std::max(
       std::hypot(qf[layout::kX] - problem.goal.x, qf[layout::kY] - problem.goal.y) /
-          s.position_tolerance,
+          problem.tolerance.position,
       std::abs(goalAngleError(qf[layout::kPhi], problem.goal.phi, problem.absolute_angle)) /
-          s.angle_tolerance);
+          problem.tolerance.angle);
   return true;
 }
 

@@ -36,13 +36,12 @@ class PipelineRun {
               const trajopt::PlanRefiner* refiner, const RunContext& context)
       : model_(model), s_(settings), refiner_(refiner), context_(context) {
     certificate_ = s_.certificate;
-    certificate_.trial.position_tolerance = s_.planner.position_tolerance;
-    certificate_.trial.angle_tolerance = s_.planner.angle_tolerance;
-    certificate_.feedback = s_.feedback;
     out_.best_distance = std::numeric_limits<double>::infinity();
   }
 
   PipelineOutcome run(const Problem& problem) {
+    certificate_.trial.position_tolerance = problem.tolerance.position;
+    certificate_.trial.angle_tolerance = problem.tolerance.angle;
     if (s_.method != PipelineMethod::kKinodynamic) supportAttempt(problem);
     int attempts = 0;
     while (s_.method != PipelineMethod::kSupport && !cancelled() && !certified() &&
@@ -69,9 +68,7 @@ class PipelineRun {
     SupportPlannerSettings ss = s_.support;
     const double budget = s_.planner.time_limit;
     ss.time_limit = s_.method == PipelineMethod::kAuto ? s_.support_share * budget : budget;
-    ss.position_tolerance = s_.planner.position_tolerance;
-    ss.angle_tolerance = s_.planner.angle_tolerance;
-    ss.feedback = s_.feedback;
+    ss.feedback = s_.certificate.feedback;
     ss.cancel = context_.cancel;
     SupportPlanner support(model_, ss);
     PipelineAttempt a;
@@ -106,7 +103,7 @@ class PipelineRun {
     if (context_.on_event) ps.progress = [this](const Progress& p) { emit(SearchProgress{p}); };
     ReorientationPlanner search(model_, ps);
     PipelineAttempt a;
-    a.planner = ps.planner;
+    a.planner = toString(ps.planner);
     a.seed = ps.seed;
     emit(StageStarted{PipelineStage::kKinodynamicSearch, a});
     plan::Plan plan;

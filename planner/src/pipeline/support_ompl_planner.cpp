@@ -74,11 +74,10 @@ ob::PlannerStatus SupportOmplPlanner::solve(const ob::PlannerTerminationConditio
   problem.start_theta = q0[layout::kTheta];
   problem.goal = goal->pose();
   problem.absolute_angle = goal->absoluteAngle();
+  problem.tolerance = {goal->positionTolerance(), goal->angleTolerance()};
 
   // SupportPlanner stops on a flag; OMPL's condition is polled beside it and sets the flag.
   SupportPlannerSettings s = settings_;
-  s.position_tolerance = goal->positionTolerance();
-  s.angle_tolerance = goal->angleTolerance();
   s.time_limit = std::numeric_limits<double>::infinity();
   std::atomic<bool> stop{false}, done{false};
   s.cancel = &stop;

@@ -55,9 +55,9 @@ bool SupportPlanner::solve(const Problem& problem, plan::Plan& plan) {
       why = e.what();
       return true;
     }
-    plan::Plan run = closedLoopPlan(model_, reference, settings_.simulator, settings_.feedback,
-                                    problem.goal, settings_.position_tolerance,
-                                    settings_.angle_tolerance, settings_.sample_steps);
+    plan::Plan run =
+        closedLoopPlan(model_, reference, settings_.simulator, settings_.feedback, problem.goal,
+                       problem.tolerance.position, problem.tolerance.angle, settings_.sample_steps);
     runs = run.status == plan::PlanStatus::kExact;
     // Where the run left its reference: the stretch to blame (the end when it never did).
     const double departs =

@@ -5,11 +5,14 @@
 ///        configures a planner (the pipeline, the controller facade, the tools) does not
 ///        depend on OMPL's headers. The classes that use each struct name it.
 
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rbsf/dynamics/core/placement.h"
@@ -58,16 +61,24 @@ struct Progress {
   double best_distance = 0.0;  ///< goal distance in tolerance units (<= 1: reached)
 };
 
+/// \brief OMPL's control planners the kinodynamic search can run (planner_setup.h).
+enum class KinodynamicPlanner { kKPIECE1, kRRT, kSST, kEST, kPDST };
+
+/// \brief Every KinodynamicPlanner, in declaration order.
+const std::array<KinodynamicPlanner, 5>& kinodynamicPlanners();
+/// \brief OMPL's name of the planner: "KPIECE1", "RRT", "SST", "EST", "PDST".
+const char* toString(KinodynamicPlanner planner);
+/// \brief The planner named `name` (toString's words), or nothing.
+std::optional<KinodynamicPlanner> parsePlanner(std::string_view name);
+
 /// \brief Everything the planner can be told.
 struct PlannerSettings {
-  std::string planner = "KPIECE1";
+  KinodynamicPlanner planner = KinodynamicPlanner::kKPIECE1;
   double time_limit = 30.0;  ///< [s]
   /// \brief Propagations at most (0: no bound). A budget in propagations gives the same plan
   ///        on any machine, under any load, where the time limit does not bind first.
   std::uint64_t max_propagations = 0;
   std::uint32_t seed = 1;
-  double position_tolerance = 0.01;           ///< [m]
-  double angle_tolerance = 2.0 * M_PI / 180;  ///< [rad]
   SimulatorSettings simulator;
   int steps_per_control = 20;    ///< simulator steps per propagation step
   int min_control_steps = 1;     ///< propagation steps per control, least
@@ -88,7 +99,15 @@ struct PlannerSettings {
   const std::atomic<bool>* cancel = nullptr;
 };
 
-/// \brief The problem: start pose (fingers placed at start_theta, part at rest) and goal.
+/// \brief How near the goal pose a plan must end: the searches' goal region and the
+///        certificate's criteria (the part at rest within both).
+struct GoalTolerance {
+  double position = 0.01;           ///< [m]
+  double angle = 2.0 * M_PI / 180;  ///< [rad]
+};
+
+/// \brief The problem: start pose (fingers placed at start_theta, part at rest), goal and
+///        how near the goal is near enough.
 struct Problem {
   Pose start;
   double start_theta = 0.0;
@@ -98,9 +117,14 @@ struct Problem {
   ///        part's total turn from phi = 0 (phi is never wrapped along a motion), so a
   ///        start at 0 and a goal at -270 deg asks for three quarters of a clockwise turn.
   bool absolute_angle = false;
+  GoalTolerance tolerance;
 };
 
-/// \brief Planner names accepted by PlannerSettings::planner.
+/// \brief The rules of Problem that need no cell: positive, finite goal tolerances.
+///        \throws InputError naming the tolerance.
+void checkTolerance(const GoalTolerance& tolerance);
+
+/// \brief The names of kinodynamicPlanners(), for lists in messages and options.
 const std::vector<std::string>& plannerNames();
 
 /// \brief The rules of DecisiveModes: settle_steps >= 0, cone_margin in (0, 1].
@@ -108,9 +132,9 @@ const std::vector<std::string>& plannerNames();
 void checkSettings(const DecisiveModes& rule);
 
 /// \brief The rules of PlannerSettings, in one place (the planner, the pipeline and the
-///        tools check through it): a known planner name, a positive finite time limit,
-///        positive and ordered control steps, positive goal tolerances, and the
-///        decisive-modes rule's. \throws InputError naming the first bad setting.
+///        tools check through it): a known planner, a positive finite time limit,
+///        positive and ordered control steps, and the decisive-modes rule's. \throws InputError
+///        naming the first bad setting.
 void checkSettings(const PlannerSettings& settings);
 
 }  // namespace rbsf::planner

@@ -40,9 +40,8 @@ struct PlannerSetup {
   VecQ q0;                         ///< start configuration (part at rest)
 };
 
-/// \brief An OMPL control planner by name (KPIECE1, RRT, SST, EST, PDST) with its goal
-///        bias set. \throws InputError for another name.
-ompl::base::PlannerPtr makeControlPlanner(const std::string& name,
+/// \brief OMPL's control planner `planner` with its goal bias set.
+ompl::base::PlannerPtr makeControlPlanner(KinodynamicPlanner planner,
                                           const ompl::control::SpaceInformationPtr& si,
                                           double goal_bias);
 

@@ -126,23 +126,22 @@ struct RunContext {
 };
 
 /// \brief Settings of ReorientationPipeline; defaults documented. The pipeline writes the
-///        tolerances of `planner`, the budget and the feedback into the stages' settings.
+///        budget and the feedback into the stages' settings, and the problem's tolerance
+///        into the certificate's criteria.
 struct PipelineSettings {
   PipelineMethod method = PipelineMethod::kAuto;
   /// \brief The kinodynamic planner; time_limit is the whole run's search budget [s],
-  ///        seed the first attempt's seed; its tolerances are every stage's (cancel and
-  ///        progress come from the RunContext).
+  ///        seed the first attempt's seed (cancel and progress come from the RunContext).
   PlannerSettings planner;
-  /// \brief The support planner (its time_limit, tolerances, cancel and feedback are set
-  ///        by the pipeline).
+  /// \brief The support planner (its time_limit, cancel and feedback are set by the
+  ///        pipeline).
   SupportPlannerSettings support;
   double support_share = 0.5;     ///< kAuto: the support search's share of the budget
   int max_attempts = 0;           ///< kinodynamic searches at most (0: while the budget lasts)
   double min_attempt_time = 1.0;  ///< [s] no later kinodynamic search starts with less left
-  /// \brief The trials (tolerances and feedback are set by the pipeline).
+  /// \brief The trials (their tolerances are the problem's); its `feedback`, the control
+  ///        law's gains, is also the support planner's for its closed-loop runs.
   plan::CertificateSettings certificate;
-  /// \brief The control law's gains, of the support planner's runs and of the trials.
-  FeedbackSettings feedback;
   /// \brief Refine every exact plan with the optimiser (refine_and_certify.h); false: plans
   ///        are certified as found.
   bool optimize = false;

@@ -63,8 +63,6 @@ struct SupportPlannerSettings {
   /// \brief Lattice steps (psi, theta, X) blocked around a departed stretch's waypoints.
   int block_radius = 1;
   int max_paths = 40;                         ///< paths run per friction use (at least 1)
-  double position_tolerance = 0.01;           ///< [m]
-  double angle_tolerance = 2.0 * M_PI / 180;  ///< [rad]
   int sample_steps = 20;                      ///< plan samples every this many steps
   const std::atomic<bool>* cancel = nullptr;  ///< stops the search when set and true
 

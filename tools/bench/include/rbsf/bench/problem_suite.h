@@ -30,10 +30,8 @@ namespace rbsf::bench {
 /// \brief One benchmark problem.
 struct BenchProblem {
   std::string name;
-  std::string cell_path;  ///< resolved against the problem file's folder
-  planner::Problem problem;
-  double position_tolerance = 0.01;           ///< [m]
-  double angle_tolerance = 2.0 * M_PI / 180;  ///< [rad]
+  std::string cell_path;     ///< resolved against the problem file's folder
+  planner::Problem problem;  ///< with the problem's `tolerances` (Problem::tolerance)
 };
 
 /// \brief Read a problem file. \throws InputError (file, problem, key) for bad content,
