@@ -2,7 +2,7 @@
 // plans of 15, 30 and 45 degree turns and of the quarter turn (+90 degrees onto
 // (-0.21, 0.43), one pivot: planner/pivot_turn_search.h at friction use 0.82), each planned
 // by the support planner on an expansion budget and refined as plan-reorientation refines it
-// (trajopt::refinePlan with the plan's margins: stated roles, friction-use cone, normal
+// (planner::refineAndCertify with the plan's margins: stated roles, friction-use cone, normal
 // floor, motion limits, tube, least-norm forces; certify both, write the refinement when its
 // certificate is at least the planner's). Per problem: the planner's and the refinement's
 // certificates (the same draws), which plan is written, the effort of the refinement over the

@@ -1,7 +1,7 @@
 // Optimiser benchmark (a program, not a timed test): the default cell's 30, 90 and 180
 // degree reorientations through the product's pipeline call (ReorientationPipeline: one
 // KPIECE1 search per seed 1..N), each exact plan refined by the pipeline's refinement step
-// (trajopt::refinementStep, --knots collocation intervals: optimise, certify the planner's
+// (planner::refineAndCertify, --knots collocation intervals: optimise, certify the planner's
 // plan and the refinement, retry once with a minimum slip rate when the refinement is not
 // certified, keep the better). Per problem: plans found, Ipopt converged
 // (the summarised solve), median iterations, median and worst solve time (wall), the median

@@ -134,6 +134,7 @@ planner::PipelineSettings ReorientationController::Impl::pipelineSettings(
   pipeline.method = request.method;
   pipeline.max_attempts = request.max_attempts;
   pipeline.planner = request.planner;
+  pipeline.support = request.support;
   pipeline.certificate = request.certificate;
   pipeline.certificate.feedback = feedback;
   pipeline.optimize = request.optimize;

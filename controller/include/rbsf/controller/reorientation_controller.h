@@ -5,16 +5,15 @@
 ///        the control law (rbsf/dynamics/control/control_law.h).
 ///
 /// Threads. plan() starts a worker thread and returns at once; the worker runs the
-/// pipeline (planner/reorientation_pipeline.h: the planners and, when asked, the optimiser),
-/// which certifies the result (plan/certificate.h: closed-loop
-/// trials under the cell's sensing and uncertainty), builds the plan's feedback schedule
-/// and publishes it. Any number of threads may call sample(), publishedPlan(), status(),
-/// outcome() and planId() at any time, also while the worker runs: they take no lock,
-/// allocate nothing and free nothing (the published plan is an immutable snapshot handed
-/// over through three slots; see src/snapshot_slots.h). track() and addPartPose() run the
-/// control law's estimator, which has state: call them from one real-time loop thread
-/// only (they too take no lock and allocate nothing). The other members (plan(), cancel(),
-/// wait(), result()) may be called from any non-real-time thread; cancel() is also
+/// pipeline (planner/pipeline/reorientation_pipeline.h: the planners and, when asked, the
+/// optimiser), which certifies the result (plan/certificate.h: closed-loop trials under the cell's
+/// sensing and uncertainty), builds the plan's feedback schedule and publishes it. Any number of
+/// threads may call sample(), publishedPlan(), status(), outcome() and planId() at any time, also
+/// while the worker runs: they take no lock, allocate nothing and free nothing (the published plan
+/// is an immutable snapshot handed over through three slots; see src/snapshot_slots.h). track() and
+/// addPartPose() run the control law's estimator, which has state: call them from one real-time
+/// loop thread only (they too take no lock and allocate nothing). The other members (plan(),
+/// cancel(), wait(), result()) may be called from any non-real-time thread; cancel() is also
 /// async-signal-safe.
 ///
 /// Plan time. A plan starts at t = 0 with the part at rest at the problem's start (q0 =
@@ -101,6 +100,10 @@ struct ReorientationRequest {
   ///        alone, suits a cell that senses the part; kAuto tries the support planner (plans
   ///        the joints alone hold) first.
   planner::PipelineMethod method = planner::PipelineMethod::kKinodynamic;
+  /// \brief The support planner, for kAuto (its time_limit, cancel and feedback are set
+  ///        from the request and the facade). Its max_expansions bounds its searches by
+  ///        work, so that a plan does not depend on the machine's speed.
+  planner::SupportPlannerSettings support;
   /// \brief Kinodynamic searches at most, seed after seed, until one certifies (0: while
   ///        planner.time_limit lasts).
   int max_attempts = 1;

@@ -48,7 +48,7 @@ struct OptimizerSettings {
   ///        off or lands inside a phase does so at a run boundary with the plan's timing;
   ///        false: one run per phase letter, each contact's role the majority over the run.
   ///        Falls back to false when `knots` is fewer than 2 per run. On 32 planner plans
-  ///        true converged 28 times against 26, but with refinePlan's retry 2 refinements
+  ///        true converged 28 times against 26, but with the refiner's retry 2 refinements
   ///        passed a joint-tracking replay against 4, hence off by default.
   bool split_runs_by_contact_modes = false;
   /// \brief true: runs are cut where the plan's stated contact roles change and keep them
