@@ -54,6 +54,126 @@ struct Reader {
   Reader sub(const char* key) const { return {where + "." + key}; }
 };
 
+/// The counts and their bound (law, trials, successes, success_rate, confidence,
+/// lower_bound): a file whose bound does not follow from its counts is refused.
+void readCounts(const Reader& rd, const json& j, Certificate& c) {
+  c.law = rd.text(j, "law");
+  c.trials = static_cast<int>(rd.integer(j, "trials", 1, 100000));
+  c.successes = static_cast<int>(rd.integer(j, "successes", 0, c.trials));
+  c.success_rate = rd.num(j, "success_rate");
+  c.confidence = rd.num(j, "confidence");
+  if (!(c.confidence >= 0.5 && c.confidence < 1.0))
+    throw InputError(rd.where + ".confidence must be in [0.5, 1)");
+  // The bound follows from the counts: a file whose bound does not is refused, not trusted.
+  c.lower_bound = rd.num(j, "lower_bound");
+  const double bound = clopperPearsonLower(c.successes, c.trials, c.confidence);
+  if (!(std::abs(c.lower_bound - bound) <= 1e-9)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  ".lower_bound must be the %g %% lower confidence bound of %d/%d trials (%.6g)",
+                  100.0 * c.confidence, c.successes, c.trials, bound);
+    throw InputError(rd.where + buf);
+  }
+}
+
+/// `sequential`: false for a fixed count, else {batch, max_trials} with trials within.
+void readSequential(const Reader& rd, const json& j, Certificate& c) {
+  const json& sequential = rd.need(j, "sequential");
+  if (sequential.is_object()) {
+    const Reader qr = rd.sub("sequential");
+    c.sequential = true;
+    c.batch = static_cast<int>(qr.integer(sequential, "batch", 1, 100000));
+    c.max_trials = static_cast<int>(qr.integer(sequential, "max_trials", c.batch, 100000));
+    if (c.trials > c.max_trials)
+      throw InputError(rd.where + ".trials must be at most sequential.max_trials");
+  } else if (!(sequential.is_boolean() && !sequential.get<bool>())) {
+    throw InputError(rd.where + ".sequential must be false or {batch, max_trials}");
+  }
+}
+
+/// The success criteria `crit` (read by `cr`).
+void readCriteria(const Reader& cr, const json& crit, Certificate& c) {
+  c.position_tolerance = cr.num(crit, "position_tolerance");
+  c.angle_tolerance = cr.num(crit, "angle_tolerance");
+  c.rest_speed = cr.num(crit, "rest_speed");
+  c.rest_angular_speed = cr.num(crit, "rest_angular_speed");
+  c.settle_time = cr.num(crit, "settle_time");
+}
+
+/// The sensing `sensing` (read by `sr`): joint noise, and the part pose or "none".
+void readSensing(const Reader& sr, const json& sensing, Sensing& out) {
+  std::tie(out.joints.angle_noise, out.joints.stroke_noise) =
+      sr.sub("joints").pairOf(sr.need(sensing, "joints"), "noise");
+  const json& pose = sr.need(sensing, "part_pose");
+  PartPoseSensing& pp = out.part_pose;
+  pp.present = !(pose.is_string() && pose.get<std::string>() == "none");
+  if (pp.present) {
+    const Reader pr = sr.sub("part_pose");
+    pp.rate = pr.num(pose, "rate");
+    pp.latency = pr.num(pose, "latency");
+    std::tie(pp.position_noise, pp.angle_noise) = pr.pairOf(pose, "noise");
+  }
+}
+
+/// The uncertainty `u` (read by `ur`).
+void readUncertainty(const Reader& ur, const json& u, Uncertainty& un) {
+  un.mass = ur.num(u, "mass");
+  un.inertia = ur.num(u, "inertia");
+  un.com = ur.num(u, "com");
+  un.static_friction = ur.num(u, "static_friction");
+  std::tie(un.kinetic_friction_min, un.kinetic_friction_max) = ur.pairOf(u, "kinetic_friction");
+  un.initial_position = ur.num(u, "initial_position");
+  un.initial_angle = ur.num(u, "initial_angle");
+  un.actuator_gain = ur.num(u, "actuator_gain");
+}
+
+/// The worst trial `w` (read by `wr`) of `trials`.
+void readWorst(const Reader& wr, const json& w, int trials, TrialOutcome& o) {
+  o.index = static_cast<int>(wr.integer(w, "trial", -1, trials - 1));
+  o.success = wr.boolean(w, "success");
+  o.failure = wr.text(w, "failure");
+  o.position_error = wr.num(w, "position_error");
+  o.angle_error = wr.num(w, "angle_error");
+  o.speed = wr.num(w, "speed");
+  o.angular_speed = wr.num(w, "angular_speed");
+  o.dropped = wr.boolean(w, "dropped");
+  if (o.dropped) o.dropped_time = wr.num(w, "dropped_time");
+  o.saturated_time = wr.num(w, "saturated_time");
+  o.min_f_n = wr.num(w, "min_f_n");
+  o.max_deviation = wr.num(w, "max_deviation");
+  o.phases = wr.text(w, "phases");
+  if (w.contains("departure_time")) {
+    o.departure_time = wr.num(w, "departure_time");
+    o.departure_phase = wr.text(w, "departure_phase");
+  }
+}
+
+/// The plan's motion `mj` (read by `mr`): its peaks, end speeds and limits.
+void readMotion(const Reader& mr, const json& mj, PlanMotion& m) {
+  m.measured = true;
+  m.peak_speed = mr.num(mj, "peak_speed");
+  m.peak_speed_time = mr.num(mj, "peak_speed_time");
+  m.peak_angular_speed = mr.num(mj, "peak_angular_speed");
+  m.peak_angular_time = mr.num(mj, "peak_angular_time");
+  m.end_speed = mr.num(mj, "end_speed");
+  m.end_angular_speed = mr.num(mj, "end_angular_speed");
+  const Reader lr = mr.sub("limits");
+  const json& lj = mr.need(mj, "limits");
+  m.limits.part_speed = lr.num(lj, "part_speed");
+  m.limits.angular_speed = lr.num(lj, "angular_speed");
+  std::tie(m.limits.rest_speed, m.limits.rest_angular_speed) = lr.pairOf(lj, "rest");
+}
+
+/// The holding check `hj` (read by `hr`).
+void readHolding(const Reader& hr, const json& hj, Certificate& c) {
+  c.holding_required = true;
+  c.holding.measured = hr.boolean(hj, "measured");
+  c.holding.free_time = hr.num(hj, "free_time");
+  c.holding.longest_free = hr.num(hj, "longest_free");
+  c.holding.longest_free_start = hr.num(hj, "longest_free_start");
+  c.holding.max_free_time = hr.num(hj, "max_free_time");
+}
+
 }  // namespace
 
 json certificateJson(const Certificate& c) {
@@ -140,117 +260,19 @@ Certificate readCertificateJson(const json& j, const std::string& where) {
   const Reader rd{where};
   Certificate c;
   c.ran = true;
-  c.law = rd.text(j, "law");
-  c.trials = static_cast<int>(rd.integer(j, "trials", 1, 100000));
-  c.successes = static_cast<int>(rd.integer(j, "successes", 0, c.trials));
-  c.success_rate = rd.num(j, "success_rate");
-  c.confidence = rd.num(j, "confidence");
-  if (!(c.confidence >= 0.5 && c.confidence < 1.0))
-    throw InputError(where + ".confidence must be in [0.5, 1)");
-  // The bound follows from the counts: a file whose bound does not is refused, not trusted.
-  c.lower_bound = rd.num(j, "lower_bound");
-  const double bound = clopperPearsonLower(c.successes, c.trials, c.confidence);
-  if (!(std::abs(c.lower_bound - bound) <= 1e-9)) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf,
-                  ".lower_bound must be the %g %% lower confidence bound of %d/%d trials (%.6g)",
-                  100.0 * c.confidence, c.successes, c.trials, bound);
-    throw InputError(where + buf);
-  }
+  readCounts(rd, j, c);
   c.required_rate = rd.num(j, "required_rate");
   c.certified = rd.boolean(j, "certified");
-  const json& sequential = rd.need(j, "sequential");
-  if (sequential.is_object()) {
-    const Reader qr = rd.sub("sequential");
-    c.sequential = true;
-    c.batch = static_cast<int>(qr.integer(sequential, "batch", 1, 100000));
-    c.max_trials = static_cast<int>(qr.integer(sequential, "max_trials", c.batch, 100000));
-    if (c.trials > c.max_trials)
-      throw InputError(where + ".trials must be at most sequential.max_trials");
-  } else if (!(sequential.is_boolean() && !sequential.get<bool>())) {
-    throw InputError(where + ".sequential must be false or {batch, max_trials}");
-  }
+  readSequential(rd, j, c);
   const json& seed = rd.need(j, "seed");
   if (!seed.is_number_unsigned()) throw InputError(where + ".seed must be an unsigned integer");
   c.seed = seed.get<std::uint64_t>();
-  const Reader cr = rd.sub("criteria");
-  const json& crit = rd.need(j, "criteria");
-  c.position_tolerance = cr.num(crit, "position_tolerance");
-  c.angle_tolerance = cr.num(crit, "angle_tolerance");
-  c.rest_speed = cr.num(crit, "rest_speed");
-  c.rest_angular_speed = cr.num(crit, "rest_angular_speed");
-  c.settle_time = cr.num(crit, "settle_time");
-  const Reader sr = rd.sub("sensing");
-  const json& sensing = rd.need(j, "sensing");
-  std::tie(c.sensing.joints.angle_noise, c.sensing.joints.stroke_noise) =
-      sr.sub("joints").pairOf(sr.need(sensing, "joints"), "noise");
-  const json& pose = sr.need(sensing, "part_pose");
-  PartPoseSensing& pp = c.sensing.part_pose;
-  pp.present = !(pose.is_string() && pose.get<std::string>() == "none");
-  if (pp.present) {
-    const Reader pr = sr.sub("part_pose");
-    pp.rate = pr.num(pose, "rate");
-    pp.latency = pr.num(pose, "latency");
-    std::tie(pp.position_noise, pp.angle_noise) = pr.pairOf(pose, "noise");
-  }
-  const Reader ur = rd.sub("uncertainty");
-  const json& u = rd.need(j, "uncertainty");
-  Uncertainty& un = c.uncertainty;
-  un.mass = ur.num(u, "mass");
-  un.inertia = ur.num(u, "inertia");
-  un.com = ur.num(u, "com");
-  un.static_friction = ur.num(u, "static_friction");
-  std::tie(un.kinetic_friction_min, un.kinetic_friction_max) = ur.pairOf(u, "kinetic_friction");
-  un.initial_position = ur.num(u, "initial_position");
-  un.initial_angle = ur.num(u, "initial_angle");
-  un.actuator_gain = ur.num(u, "actuator_gain");
-  const Reader wr = rd.sub("worst");
-  const json& w = rd.need(j, "worst");
-  TrialOutcome& o = c.worst;
-  o.index = static_cast<int>(wr.integer(w, "trial", -1, c.trials - 1));
-  o.success = wr.boolean(w, "success");
-  o.failure = wr.text(w, "failure");
-  o.position_error = wr.num(w, "position_error");
-  o.angle_error = wr.num(w, "angle_error");
-  o.speed = wr.num(w, "speed");
-  o.angular_speed = wr.num(w, "angular_speed");
-  o.dropped = wr.boolean(w, "dropped");
-  if (o.dropped) o.dropped_time = wr.num(w, "dropped_time");
-  o.saturated_time = wr.num(w, "saturated_time");
-  o.min_f_n = wr.num(w, "min_f_n");
-  o.max_deviation = wr.num(w, "max_deviation");
-  o.phases = wr.text(w, "phases");
-  if (w.contains("departure_time")) {
-    o.departure_time = wr.num(w, "departure_time");
-    o.departure_phase = wr.text(w, "departure_phase");
-  }
-  if (j.contains("motion")) {
-    const Reader mr = rd.sub("motion");
-    const json& mj = j.at("motion");
-    PlanMotion& m = c.motion;
-    m.measured = true;
-    m.peak_speed = mr.num(mj, "peak_speed");
-    m.peak_speed_time = mr.num(mj, "peak_speed_time");
-    m.peak_angular_speed = mr.num(mj, "peak_angular_speed");
-    m.peak_angular_time = mr.num(mj, "peak_angular_time");
-    m.end_speed = mr.num(mj, "end_speed");
-    m.end_angular_speed = mr.num(mj, "end_angular_speed");
-    const Reader lr = mr.sub("limits");
-    const json& lj = mr.need(mj, "limits");
-    m.limits.part_speed = lr.num(lj, "part_speed");
-    m.limits.angular_speed = lr.num(lj, "angular_speed");
-    std::tie(m.limits.rest_speed, m.limits.rest_angular_speed) = lr.pairOf(lj, "rest");
-  }
-  if (j.contains("holding")) {
-    const Reader hr = rd.sub("holding");
-    const json& hj = j.at("holding");
-    c.holding_required = true;
-    c.holding.measured = hr.boolean(hj, "measured");
-    c.holding.free_time = hr.num(hj, "free_time");
-    c.holding.longest_free = hr.num(hj, "longest_free");
-    c.holding.longest_free_start = hr.num(hj, "longest_free_start");
-    c.holding.max_free_time = hr.num(hj, "max_free_time");
-  }
+  readCriteria(rd.sub("criteria"), rd.need(j, "criteria"), c);
+  readSensing(rd.sub("sensing"), rd.need(j, "sensing"), c.sensing);
+  readUncertainty(rd.sub("uncertainty"), rd.need(j, "uncertainty"), c.uncertainty);
+  readWorst(rd.sub("worst"), rd.need(j, "worst"), c.trials, c.worst);
+  if (j.contains("motion")) readMotion(rd.sub("motion"), j.at("motion"), c.motion);
+  if (j.contains("holding")) readHolding(rd.sub("holding"), j.at("holding"), c);
   return c;
 }
 

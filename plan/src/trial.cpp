@@ -85,102 +85,11 @@ TrialDraw drawTrial(const Cell& cell, const Plan& plan, std::uint64_t seed, int 
   return d;
 }
 
-TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const TrialDraw& draw,
-                      const TrialSettings& s, bool open_loop,
-                      std::vector<TrajectorySample>* trace) {
-  const RbsfModel plant(draw.cell);
-  const Simulator simulator(plant, plan.simulator);
-  const int m = plant.numFingers(), nu = plant.controlDim();
-  if (plan.q0.size() != plant.configDim())
-    throw InputError("the plan is for " + std::to_string(plan.q0.size() - 4) +
-                     " fingers, the cell has " + std::to_string(m));
-  const double h = plan.simulator.time_step;
-  auto ws = std::make_unique<SimulatorWorkspace>(m);
-  SimState state(draw.q0, VecQ::Zero(draw.q0.size()));
-  ControlLaw law(schedule);
-  SensorModel sensors(schedule.sensing(), h, draw.noise_seed, draw.noise, draw.com_offset);
+namespace {
 
-  const long steps = std::lround(schedule.holdEnd() / h);
-  const long rest_steps = std::max(1L, std::min(steps, std::lround(s.rest_window / h)));
-  auto framePose = [&](const VecQ& q) {
-    const Pose p = sensors.framePose(q);
-    return Eigen::Vector3d(p.x, p.y, p.phi);
-  };
-
-  TrialOutcome r;
-  ReferenceSample ref, mid;
-  VecU joints(nu);
-  long saturated = 0, untouched = 0;
-  double min_fn = std::numeric_limits<double>::infinity();
-  std::vector<std::pair<Phase, double>> runs;
-  Eigen::Vector3d window_start = framePose(state.q);
-
-  auto input = [&](const SimState& now, long n, VecU& tau) {
-    const double t = static_cast<double>(n) * h;
-    if (open_loop) {
-      schedule.reference(t + 0.5 * h, mid);
-      tau = mid.tau;
-      for (int j = 0; j < nu; ++j)
-        if (std::abs(tau[j]) > plant.cell().inputLimit(j)) {
-          ++saturated;
-          break;
-        }
-    } else {
-      sensors.joints(now.q, joints);
-      sensors.partPose(n, now.q, [&](double stamp, const Pose& p) { law.addPartPose(stamp, p); });
-      if (law.compute(t, joints, tau)) ++saturated;
-    }
-    for (int j = 0; j < nu; ++j) tau[j] *= draw.actuator_gain[j];
-    return true;
-  };
-  auto observe = [&](const SimState& now, const StepReport& report, const VecU& tau, long n) {
-    const double t = static_cast<double>(n + 1) * h;
-    if (trace) trace->push_back(trajectorySample(now, report, tau));
-    for (int i = 0; i < m; ++i)
-      if (report.contacts[i].mode != ContactMode::kSeparated)
-        min_fn = std::min(min_fn, report.contacts[i].f_n);
-    const Phase ph = report.phase == Phase::kUnsupported ? Phase::kU : report.phase;
-    if (!runs.empty() && runs.back().first == ph)
-      runs.back().second += h;
-    else
-      runs.emplace_back(ph, h);
-    untouched = report.touching == 0 ? untouched + 1 : 0;
-    const Eigen::Vector3d p = framePose(now.q);
-    schedule.reference(t, ref);
-    const double dp = std::hypot(p[0] - ref.q[layout::kX], p[1] - ref.q[layout::kY]);
-    const double da = std::abs(p[2] - ref.q[layout::kPhi]);
-    r.max_deviation =
-        std::max(r.max_deviation, std::max(dp / s.position_tolerance, da / s.angle_tolerance));
-    if (r.departure_time < 0.0 && !(dp <= s.position_tolerance && da <= s.angle_tolerance)) {
-      r.departure_time = t;
-      r.departure_phase = t > schedule.planEnd() ? "hold" : std::string(1, letter(ref.phase));
-    }
-    if (n + 1 == steps - rest_steps) window_start = p;
-    const bool lost = !now.q.allFinite() || !now.v.allFinite() || !(dp <= s.lost_distance) ||
-                      static_cast<double>(untouched) * h >= s.drop_time;
-    if (lost) {
-      r.dropped = true;
-      r.dropped_time = t;
-    }
-    return !lost;
-  };
-  const long taken = rollout(simulator, state, steps, *ws, input, observe);
-
-  r.saturated_time = static_cast<double>(saturated) * h;
-  r.min_f_n = std::isfinite(min_fn) ? min_fn : 0.0;
-  r.phases = filterPhaseRuns(runs, s.min_phase_run);
-  const Eigen::Vector3d p = state.q.allFinite() ? framePose(state.q) : Eigen::Vector3d::Zero();
-  r.position_error = std::hypot(p[0] - plan.goal.x, p[1] - plan.goal.y);
-  schedule.reference(schedule.planEnd(), ref);
-  const double goal_phi = ref.q[layout::kPhi] + angleDifference(plan.goal.phi, ref.q[layout::kPhi]);
-  r.angle_error = std::abs(p[2] - goal_phi);
-  if (taken == steps) {
-    const double w = static_cast<double>(rest_steps) * h;
-    r.speed = std::hypot(p[0] - window_start[0], p[1] - window_start[1]) / w;
-    r.angular_speed = std::abs(p[2] - window_start[2]) / w;
-  }
-  if (!state.q.allFinite()) r.position_error = r.angle_error = r.speed = r.angular_speed = 0.0;
-
+/// The failures of outcome `r` under `s` and the cell's rest limits `rest` (in this order:
+/// dropped, position, angle, not at rest, saturated), and its success.
+void judge(const TrialSettings& s, const MotionLimits& rest, TrialOutcome& r) {
   char buf[160];
   auto fail = [&](const char* what) {
     r.failure += (r.failure.empty() ? "" : "; ") + std::string(what);
@@ -199,7 +108,6 @@ TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const 
                   r.angle_error * 180 / M_PI, s.angle_tolerance * 180 / M_PI);
     fail(buf);
   }
-  const MotionLimits& rest = schedule.model().cell().motion_limits;
   if (!r.dropped && !(r.speed <= rest.rest_speed && r.angular_speed <= rest.rest_angular_speed)) {
     std::snprintf(buf, sizeof buf, "not at rest (%.3g m/s, %.3g deg/s)", r.speed,
                   r.angular_speed * 180 / M_PI);
@@ -210,7 +118,179 @@ TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const 
     fail(buf);
   }
   r.success = r.failure.empty();
-  return r;
+}
+
+/// One runTrial() in progress: the plant's law and sensors and what the rollout's steps have
+/// seen so far; run() once per object.
+class TrialRun {
+ public:
+  TrialRun(const FeedbackSchedule& schedule, const Plan& plan, const TrialDraw& draw,
+           const TrialSettings& s, const RbsfModel& plant, bool open_loop,
+           std::vector<TrajectorySample>* trace)
+      : schedule_(schedule),
+        plan_(plan),
+        draw_(draw),
+        s_(s),
+        plant_(plant),
+        open_loop_(open_loop),
+        trace_(trace),
+        m_(plant.numFingers()),
+        nu_(plant.controlDim()),
+        h_(plan.simulator.time_step),
+        law_(schedule),
+        sensors_(schedule.sensing(), h_, draw.noise_seed, draw.noise, draw.com_offset),
+        steps_(std::lround(schedule.holdEnd() / h_)),
+        rest_steps_(std::max(1L, std::min(steps_, std::lround(s.rest_window / h_)))),
+        joints_(nu_) {}
+
+  /// The trial on `simulator` (the plant's), measured at its end and judged (judge()).
+  TrialOutcome run(const Simulator& simulator) {
+    auto ws = std::make_unique<SimulatorWorkspace>(m_);
+    SimState state(draw_.q0, VecQ::Zero(draw_.q0.size()));
+    window_start_ = framePose(state.q);
+    const long taken = rollout(
+        simulator, state, steps_, *ws,
+        [this](const SimState& now, long n, VecU& tau) { return input(now, n, tau); },
+        [this](const SimState& now, const StepReport& report, const VecU& tau, long n) {
+          return observe(now, report, tau, n);
+        });
+    measureEnd(state, taken);
+    judge(s_, schedule_.model().cell().motion_limits, r_);
+    return r_;
+  }
+
+ private:
+  /// The sensed frame pose (x, y, phi) of the part at `q`.
+  Eigen::Vector3d framePose(const VecQ& q) const {
+    const Pose p = sensors_.framePose(q);
+    return Eigen::Vector3d(p.x, p.y, p.phi);
+  }
+  /// The rollout input of step n: the reference's (open loop) or the law's, times the drawn
+  /// actuator gains; counts the steps at the input limits.
+  bool input(const SimState& now, long n, VecU& tau);
+  /// The rollout observer after step n: records it, follows the reference and tells whether
+  /// the part is lost (false stops the trial).
+  bool observe(const SimState& now, const StepReport& report, const VecU& tau, long n);
+  /// Records the step: the trace, the lowest normal force, the phase runs, the steps
+  /// without touch.
+  void record(const SimState& now, const StepReport& report, const VecU& tau);
+  /// The deviation of frame pose `p` from the reference at time t, and where the part first
+  /// left the planned path; returns the position deviation.
+  double follow(const Eigen::Vector3d& p, double t);
+  /// The outcome's measures at the end of the `taken` steps: saturation, force, phases,
+  /// errors to the goal and, when the trial ran to the end, the speeds over the rest window.
+  void measureEnd(const SimState& state, long taken);
+
+  const FeedbackSchedule& schedule_;
+  const Plan& plan_;
+  const TrialDraw& draw_;
+  const TrialSettings& s_;
+  const RbsfModel& plant_;
+  const bool open_loop_;
+  std::vector<TrajectorySample>* trace_;
+  const int m_, nu_;
+  const double h_;
+  ControlLaw law_;
+  SensorModel sensors_;
+  const long steps_, rest_steps_;
+  TrialOutcome r_;
+  ReferenceSample ref_, mid_;
+  VecU joints_;
+  long saturated_ = 0, untouched_ = 0;
+  double min_fn_ = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<Phase, double>> runs_;
+  Eigen::Vector3d window_start_;  ///< frame pose at the start of the rest window
+};
+
+bool TrialRun::input(const SimState& now, long n, VecU& tau) {
+  const double t = static_cast<double>(n) * h_;
+  if (open_loop_) {
+    schedule_.reference(t + 0.5 * h_, mid_);
+    tau = mid_.tau;
+    for (int j = 0; j < nu_; ++j)
+      if (std::abs(tau[j]) > plant_.cell().inputLimit(j)) {
+        ++saturated_;
+        break;
+      }
+  } else {
+    sensors_.joints(now.q, joints_);
+    sensors_.partPose(n, now.q, [&](double stamp, const Pose& p) { law_.addPartPose(stamp, p); });
+    if (law_.compute(t, joints_, tau)) ++saturated_;
+  }
+  for (int j = 0; j < nu_; ++j) tau[j] *= draw_.actuator_gain[j];
+  return true;
+}
+
+bool TrialRun::observe(const SimState& now, const StepReport& report, const VecU& tau, long n) {
+  const double t = static_cast<double>(n + 1) * h_;
+  record(now, report, tau);
+  const Eigen::Vector3d p = framePose(now.q);
+  const double dp = follow(p, t);
+  if (n + 1 == steps_ - rest_steps_) window_start_ = p;
+  const bool lost = !now.q.allFinite() || !now.v.allFinite() || !(dp <= s_.lost_distance) ||
+                    static_cast<double>(untouched_) * h_ >= s_.drop_time;
+  if (lost) {
+    r_.dropped = true;
+    r_.dropped_time = t;
+  }
+  return !lost;
+}
+
+void TrialRun::record(const SimState& now, const StepReport& report, const VecU& tau) {
+  if (trace_) trace_->push_back(trajectorySample(now, report, tau));
+  for (int i = 0; i < m_; ++i)
+    if (report.contacts[i].mode != ContactMode::kSeparated)
+      min_fn_ = std::min(min_fn_, report.contacts[i].f_n);
+  const Phase ph = report.phase == Phase::kUnsupported ? Phase::kU : report.phase;
+  if (!runs_.empty() && runs_.back().first == ph)
+    runs_.back().second += h_;
+  else
+    runs_.emplace_back(ph, h_);
+  untouched_ = report.touching == 0 ? untouched_ + 1 : 0;
+}
+
+double TrialRun::follow(const Eigen::Vector3d& p, double t) {
+  schedule_.reference(t, ref_);
+  const double dp = std::hypot(p[0] - ref_.q[layout::kX], p[1] - ref_.q[layout::kY]);
+  const double da = std::abs(p[2] - ref_.q[layout::kPhi]);
+  r_.max_deviation =
+      std::max(r_.max_deviation, std::max(dp / s_.position_tolerance, da / s_.angle_tolerance));
+  if (r_.departure_time < 0.0 && !(dp <= s_.position_tolerance && da <= s_.angle_tolerance)) {
+    r_.departure_time = t;
+    r_.departure_phase = t > schedule_.planEnd() ? "hold" : std::string(1, letter(ref_.phase));
+  }
+  return dp;
+}
+
+void TrialRun::measureEnd(const SimState& state, long taken) {
+  r_.saturated_time = static_cast<double>(saturated_) * h_;
+  r_.min_f_n = std::isfinite(min_fn_) ? min_fn_ : 0.0;
+  r_.phases = filterPhaseRuns(runs_, s_.min_phase_run);
+  const Eigen::Vector3d p = state.q.allFinite() ? framePose(state.q) : Eigen::Vector3d::Zero();
+  r_.position_error = std::hypot(p[0] - plan_.goal.x, p[1] - plan_.goal.y);
+  schedule_.reference(schedule_.planEnd(), ref_);
+  const double goal_phi =
+      ref_.q[layout::kPhi] + angleDifference(plan_.goal.phi, ref_.q[layout::kPhi]);
+  r_.angle_error = std::abs(p[2] - goal_phi);
+  if (taken == steps_) {
+    const double w = static_cast<double>(rest_steps_) * h_;
+    r_.speed = std::hypot(p[0] - window_start_[0], p[1] - window_start_[1]) / w;
+    r_.angular_speed = std::abs(p[2] - window_start_[2]) / w;
+  }
+  if (!state.q.allFinite()) r_.position_error = r_.angle_error = r_.speed = r_.angular_speed = 0.0;
+}
+
+}  // namespace
+
+TrialOutcome runTrial(const FeedbackSchedule& schedule, const Plan& plan, const TrialDraw& draw,
+                      const TrialSettings& s, bool open_loop,
+                      std::vector<TrajectorySample>* trace) {
+  const RbsfModel plant(draw.cell);
+  const Simulator simulator(plant, plan.simulator);
+  if (plan.q0.size() != plant.configDim())
+    throw InputError("the plan is for " + std::to_string(plan.q0.size() - 4) +
+                     " fingers, the cell has " + std::to_string(plant.numFingers()));
+  return TrialRun(schedule, plan, draw, s, plant, open_loop, trace).run(simulator);
 }
 
 }  // namespace rbsf::plan

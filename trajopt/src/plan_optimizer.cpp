@@ -81,6 +81,49 @@ void checkPlan(const RbsfModel& model, const plan::Plan& plan) {
   }
 }
 
+/// Ipopt's options for `s`: quiet banner, MUMPS with PORD ordering, the problem's own scaling,
+/// the Hessian, output, budget and tolerance asked for, and the derivative test when asked.
+void setIpoptOptions(Ipopt::OptionsList& o, const OptimizerSettings& s) {
+  o.SetStringValue("sb", "yes");
+  o.SetStringValue("linear_solver", "mumps");
+  // PORD ordering: about a third less factorization time than MUMPS's automatic choice on
+  // the benchmark's 100-knot problems (block-banded KKT with one dense row per run).
+  o.SetIntegerValue("mumps_pivot_order", 4);
+  o.SetStringValue("nlp_scaling_method", "user-scaling");  // DecisionVariables::scaling()
+  // At most 3 iterative-refinement steps per linear solve (Ipopt's default is 10): on the
+  // benchmark's plans the same or fewer iterations at about 15 % less time each; the extra
+  // back-solves, where refinement stalls short of residual_ratio_max on a poorly
+  // conditioned KKT system, bought nothing.
+  o.SetIntegerValue("max_refinement_steps", 3);
+  o.SetStringValue("hessian_approximation", s.exact_hessian ? "exact" : "limited-memory");
+  o.SetIntegerValue("print_level", s.print_level);
+  o.SetIntegerValue("max_iter", s.max_iterations);
+  o.SetNumericValue("tol", s.tolerance);
+  o.SetNumericValue("max_cpu_time", s.max_solve_time);
+  if (s.derivative_test) {
+    o.SetStringValue("derivative_test", "first-order");
+    o.SetNumericValue("derivative_test_tol", 1e-5);
+    o.SetNumericValue("derivative_test_perturbation", 1e-8);  // Ipopt's default, stated
+    if (!s.derivative_test_file.empty()) {
+      o.SetStringValue("output_file", s.derivative_test_file);
+      o.SetIntegerValue("file_print_level", 5);
+    }
+  }
+}
+
+/// Why the solve is not used: Ipopt's status, its iterations and (when the solution has the
+/// problem's size) the constraint violation; the planner's plan is kept.
+std::string notConvergedMessage(const plan::OptimizationSummary& summary, const IpoptAdapter& nlp,
+                                const TrajectoryProblem& problem) {
+  const Eigen::VectorXd& z = nlp.solution();
+  std::ostringstream msg;
+  msg << "Ipopt did not converge (" << plan::toString(summary.status) << " after "
+      << summary.iterations << " iterations";
+  if (z.size() == problem.size()) msg << ", constraint violation " << nlp.constraintViolation();
+  msg << "); the planner's plan is kept";
+  return msg.str();
+}
+
 }  // namespace
 
 PlanOptimizer::PlanOptimizer(const RbsfModel& model, OptimizerSettings settings)
@@ -130,32 +173,7 @@ OptimizedPlan PlanOptimizer::optimize(const plan::Plan& plan) const {
   }
 
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
-  Ipopt::OptionsList& o = *app->Options();
-  o.SetStringValue("sb", "yes");
-  o.SetStringValue("linear_solver", "mumps");
-  // PORD ordering: about a third less factorization time than MUMPS's automatic choice on
-  // the benchmark's 100-knot problems (block-banded KKT with one dense row per run).
-  o.SetIntegerValue("mumps_pivot_order", 4);
-  o.SetStringValue("nlp_scaling_method", "user-scaling");  // DecisionVariables::scaling()
-  // At most 3 iterative-refinement steps per linear solve (Ipopt's default is 10): on the
-  // benchmark's plans the same or fewer iterations at about 15 % less time each; the extra
-  // back-solves, where refinement stalls short of residual_ratio_max on a poorly
-  // conditioned KKT system, bought nothing.
-  o.SetIntegerValue("max_refinement_steps", 3);
-  o.SetStringValue("hessian_approximation", settings_.exact_hessian ? "exact" : "limited-memory");
-  o.SetIntegerValue("print_level", settings_.print_level);
-  o.SetIntegerValue("max_iter", settings_.max_iterations);
-  o.SetNumericValue("tol", settings_.tolerance);
-  o.SetNumericValue("max_cpu_time", settings_.max_solve_time);
-  if (settings_.derivative_test) {
-    o.SetStringValue("derivative_test", "first-order");
-    o.SetNumericValue("derivative_test_tol", 1e-5);
-    o.SetNumericValue("derivative_test_perturbation", 1e-8);  // Ipopt's default, stated
-    if (!settings_.derivative_test_file.empty()) {
-      o.SetStringValue("output_file", settings_.derivative_test_file);
-      o.SetIntegerValue("file_print_level", 5);
-    }
-  }
+  setIpoptOptions(*app->Options(), settings_);
   // "": no options file. Ipopt would otherwise read ./ipopt.opt, and a stray file in the
   // caller's working directory would silently change every plan optimised from there.
   Ipopt::ApplicationReturnStatus status = app->Initialize("");
@@ -170,12 +188,7 @@ OptimizedPlan PlanOptimizer::optimize(const plan::Plan& plan) const {
       status == Ipopt::Solve_Succeeded || status == Ipopt::Solved_To_Acceptable_Level;
   const Eigen::VectorXd& z = nlp->solution();
   if (!converged || z.size() != problem.size() || !z.allFinite()) {
-    std::ostringstream msg;
-    msg << "Ipopt did not converge (" << plan::toString(summary.status) << " after "
-        << summary.iterations << " iterations";
-    if (z.size() == problem.size()) msg << ", constraint violation " << nlp->constraintViolation();
-    msg << "); the planner's plan is kept";
-    summary.message = msg.str();
+    summary.message = notConvergedMessage(summary, *nlp, problem);
     summary.cost_after = summary.cost_before;
     return out;
   }

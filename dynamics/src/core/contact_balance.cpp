@@ -84,6 +84,144 @@ bool ContactBalancer::determined(const ContactSet& set, const ModelData& data) c
   return s[0] > 0.0 && s[2] >= settings_.determined_ratio * s[0];
 }
 
+namespace {
+
+/// How the sliding contacts of a balance are taken: each one's planned slip, the kinetic
+/// coefficient, and the slip above which the kinetic friction acts (its sign set by the slip).
+struct Sliding {
+  const VecC& slip;
+  double mu;
+  double min_slip;
+
+  /// Whether finger i of `set` slides with kinetic friction.
+  bool kinetic(const ContactSet& set, int i) const {
+    return !set.sticks(i) && mu > 0.0 && std::abs(slip[i]) > min_slip;
+  }
+};
+
+/// The force unknowns' columns of a set's balance: N (the normal of each touching finger,
+/// less its kinetic friction when it slides, then the tangent of each sticking one), each
+/// column's finger and, for a tangent, its normal's column (-1 for a normal).
+struct ForceColumns {
+  Eigen::MatrixXd N;
+  Eigen::VectorXi finger, normal_col;
+};
+
+/// The columns of `set`'s nt touching fingers and their sticking tangents (nl in all) among
+/// `m` fingers, from the contact columns in `data`.
+ForceColumns forceColumns(const ContactSet& set, const ModelData& data, const Sliding& sliding,
+                          int m, int nq, int nt, int nl) {
+  ForceColumns cols{Eigen::MatrixXd(nq, nl), Eigen::VectorXi(nl), Eigen::VectorXi(nl)};
+  Eigen::MatrixXd& N = cols.N;
+  int c = 0;
+  for (int i = 0; i < m; ++i) {
+    if (!set.touches(i)) continue;
+    N.col(c) = data.G1.col(i);
+    if (sliding.kinetic(set, i))
+      N.col(c) -= sliding.mu * (sliding.slip[i] > 0.0 ? 1.0 : -1.0) * data.T.col(i);
+    cols.normal_col[c] = -1;
+    cols.finger[c++] = i;
+  }
+  for (int j = 0; j < nt; ++j) {
+    const int i = cols.finger[j];
+    if (!set.sticks(i)) continue;
+    N.col(c) = data.T.col(i);
+    cols.normal_col[c] = j;
+    cols.finger[c++] = i;
+  }
+  return cols;
+}
+
+/// A basis of the force combinations the actuators cannot feel (the null space of N, by
+/// its singular values above 1e-9 of the largest).
+Eigen::MatrixXd internalSqueezes(const Eigen::MatrixXd& N, int nl) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(N, Eigen::ComputeFullV);
+  const auto& sv = svd.singularValues();
+  int rank = 0;
+  while (rank < sv.size() && sv[rank] > 1e-9 * sv[0]) ++rank;
+  return svd.matrixV().rightCols(nl - rank);
+}
+
+/// The equality rows over the nx unknowns: the object rows of N, then Z^T z = 0.
+Eigen::MatrixXd equalityRows(const Eigen::MatrixXd& N, const Eigen::MatrixXd& Z, int nl, int nx) {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(layout::kObjectDim + Z.cols(), nx);
+  A.topLeftCorner(layout::kObjectDim, nl) = N.topRows(layout::kObjectDim);
+  A.bottomLeftCorner(Z.cols(), nl) = Z.transpose();
+  return A;
+}
+
+/// The margin rows of G x >= h from row 0: each normal force at least normal_margin times
+/// the part's `weight` plus sigma, each sticking tangent within `cone` times its normal force
+/// (the friction used of the static cone) less sigma; returns the next row.
+int marginRows(const ForceColumns& cols, int nt, int nl, double weight, double normal_margin,
+               double cone, Eigen::MatrixXd& G, Eigen::VectorXd& h) {
+  int r = 0;
+  for (int j = 0; j < nt; ++j, ++r) {
+    G(r, j) = 1.0;
+    G(r, nl) = -weight;
+    h[r] = normal_margin * weight;
+  }
+  for (int j = nt; j < nl; ++j)
+    for (double sign : {-1.0, 1.0}) {
+      G(r, cols.normal_col[j]) = cone;
+      G(r, j) = sign;
+      G(r, nl) = -weight;
+      ++r;
+    }
+  return r;
+}
+
+/// The input-limit rows of G x >= h from row r: tau_j = b_row - N_row lambda within
+/// [-limit, limit], both sides.
+void limitRows(const Eigen::MatrixXd& N, const Eigen::VectorXd& b, int nl, int nu, const Cell& cell,
+               int r, Eigen::MatrixXd& G, Eigen::VectorXd& h) {
+  for (int j = 0; j < nu; ++j) {
+    const int row = layout::inputToConfig(j);
+    const double limit = cell.inputLimit(j);
+    // tau_j = b_row - N_row lambda within [-limit, limit].
+    G.row(r).head(nl) = N.row(row);
+    h[r++] = b[row] - limit;
+    G.row(r).head(nl) = -N.row(row);
+    h[r++] = -b[row] - limit;
+  }
+}
+
+/// The LP of the balance: maximise sigma (unknown nl, bounded so that the LP is) with the
+/// nt normal forces non-negative, subject to the equalities and G x >= h.
+SolveStatus maximiseMargin(const Eigen::MatrixXd& A_eq, const Eigen::VectorXd& b_eq,
+                           const Eigen::MatrixXd& G, const Eigen::VectorXd& h, int nt, int nl,
+                           Eigen::VectorXd& x) {
+  const int nx = nl + 1;
+  const double inf = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd lower = Eigen::VectorXd::Constant(nx, -inf), upper(nx);
+  upper.setConstant(inf);
+  for (int j = 0; j < nt; ++j) lower[j] = 0.0;
+  lower[nl] = -10.0;  // sigma is bounded so that the LP is
+  upper[nl] = 10.0;
+  Eigen::VectorXd cost = Eigen::VectorXd::Zero(nx);
+  cost[nl] = -1.0;
+  return solveLp(cost, A_eq, b_eq, G, h, lower, upper, x);
+}
+
+/// The solved balance into `out`: margin, the forces per finger (the sliders' friction
+/// along t_i) and the input b - N lambda that applies them.
+void storeForces(const Eigen::VectorXd& x, const ForceColumns& cols, const Eigen::VectorXd& b,
+                 const ContactSet& set, const Sliding& sliding, int m, int nt, int nl, int nu,
+                 ContactBalance& out) {
+  out.solvable = true;
+  out.margin = x[nl];
+  out.balanced = out.margin >= 0.0;
+  Eigen::VectorXd lambda = x.head(nl);
+  for (int j = 0; j < nl; ++j) (j < nt ? out.fn : out.ft)[cols.finger[j]] = lambda[j];
+  for (int i = 0; i < m; ++i)  // friction of the sliding contacts, along t_i
+    if (set.touches(i) && sliding.kinetic(set, i))
+      out.ft[i] = -sliding.mu * (sliding.slip[i] > 0.0 ? 1.0 : -1.0) * out.fn[i];
+  const Eigen::VectorXd gen = b - cols.N * lambda;
+  for (int j = 0; j < nu; ++j) out.tau[j] = gen[layout::inputToConfig(j)];
+}
+
+}  // namespace
+
 ContactBalance ContactBalancer::solveWith(const VecQ& q, const VecQ& vdot, const ContactSet& set,
                                           const ModelData& data, const VecC& slip, double mu_slide,
                                           double min_slip) const {
@@ -99,26 +237,8 @@ ContactBalance ContactBalancer::solveWith(const VecQ& q, const VecQ& vdot, const
   // Unknowns x = (f_n of each touching finger, f_t of each sticking one, sigma).
   const int nt = set.count(), ns = set.stickingCount(), nl = nt + ns, nx = nl + 1;
   if (nt == 0) return out;
-  Eigen::MatrixXd N(nq, nl);
-  Eigen::VectorXi finger(nl), normal_col(nl);  // normal_col: a tangent's normal column
-  int c = 0;
-  auto kinetic = [&](int i) {
-    return !set.sticks(i) && mu_slide > 0.0 && std::abs(slip[i]) > min_slip;
-  };
-  for (int i = 0; i < m; ++i) {
-    if (!set.touches(i)) continue;
-    N.col(c) = data.G1.col(i);
-    if (kinetic(i)) N.col(c) -= mu_slide * (slip[i] > 0.0 ? 1.0 : -1.0) * data.T.col(i);
-    normal_col[c] = -1;
-    finger[c++] = i;
-  }
-  for (int j = 0; j < nt; ++j) {
-    const int i = finger[j];
-    if (!set.sticks(i)) continue;
-    N.col(c) = data.T.col(i);
-    normal_col[c] = j;
-    finger[c++] = i;
-  }
+  const Sliding sliding{slip, mu_slide, min_slip};
+  const ForceColumns cols = forceColumns(set, data, sliding, m, nq, nt, nl);
   MatQQ M;
   model_.massMatrix(q, M);
   const Eigen::VectorXd b = M * vdot + data.bias;  // = u + N lambda
@@ -126,19 +246,8 @@ ContactBalance ContactBalancer::solveWith(const VecQ& q, const VecQ& vdot, const
   // Equalities: the object rows and, by the plant's rule, no force combination that the
   // actuators cannot feel (N z = 0: an internal squeeze the least-norm rule leaves at zero).
   Eigen::MatrixXd Z(nl, 0);
-  if (settings_.least_norm) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(N, Eigen::ComputeFullV);
-    const auto& sv = svd.singularValues();
-    int rank = 0;
-    while (rank < sv.size() && sv[rank] > 1e-9 * sv[0]) ++rank;
-    Z = svd.matrixV().rightCols(nl - rank);
-  }
-  const Eigen::MatrixXd A_eq = [&] {
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(layout::kObjectDim + Z.cols(), nx);
-    A.topLeftCorner(layout::kObjectDim, nl) = N.topRows(layout::kObjectDim);
-    A.bottomLeftCorner(Z.cols(), nl) = Z.transpose();
-    return A;
-  }();
+  if (settings_.least_norm) Z = internalSqueezes(cols.N, nl);
+  const Eigen::MatrixXd A_eq = equalityRows(cols.N, Z, nl, nx);
   Eigen::VectorXd b_eq = Eigen::VectorXd::Zero(A_eq.rows());
   b_eq.head(layout::kObjectDim) = b.head(layout::kObjectDim);
 
@@ -146,50 +255,13 @@ ContactBalance ContactBalancer::solveWith(const VecQ& q, const VecQ& vdot, const
   const int n_margin = nt + 2 * ns;
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n_margin + 2 * nu, nx);
   Eigen::VectorXd h = Eigen::VectorXd::Zero(n_margin + 2 * nu);
-  int r = 0;
-  for (int j = 0; j < nt; ++j, ++r) {
-    G(r, j) = 1.0;
-    G(r, nl) = -weight_;
-    h[r] = settings_.normal_margin * weight_;
-  }
   const double cone = settings_.friction_use * cell.friction.mu_static;
-  for (int j = nt; j < nl; ++j)
-    for (double sign : {-1.0, 1.0}) {
-      G(r, normal_col[j]) = cone;
-      G(r, j) = sign;
-      G(r, nl) = -weight_;
-      ++r;
-    }
-  for (int j = 0; j < nu; ++j) {
-    const int row = layout::inputToConfig(j);
-    const double limit = cell.inputLimit(j);
-    // tau_j = b_row - N_row lambda within [-limit, limit].
-    G.row(r).head(nl) = N.row(row);
-    h[r++] = b[row] - limit;
-    G.row(r).head(nl) = -N.row(row);
-    h[r++] = -b[row] - limit;
-  }
+  const int r = marginRows(cols, nt, nl, weight_, settings_.normal_margin, cone, G, h);
+  limitRows(cols.N, b, nl, nu, cell, r, G, h);
 
-  const double inf = std::numeric_limits<double>::infinity();
-  Eigen::VectorXd lower = Eigen::VectorXd::Constant(nx, -inf), upper(nx);
-  upper.setConstant(inf);
-  for (int j = 0; j < nt; ++j) lower[j] = 0.0;
-  lower[nl] = -10.0;  // sigma is bounded so that the LP is
-  upper[nl] = 10.0;
-  Eigen::VectorXd cost = Eigen::VectorXd::Zero(nx), x;
-  cost[nl] = -1.0;
-  if (solveLp(cost, A_eq, b_eq, G, h, lower, upper, x) != SolveStatus::kOptimal) return out;
-
-  out.solvable = true;
-  out.margin = x[nl];
-  out.balanced = out.margin >= 0.0;
-  Eigen::VectorXd lambda = x.head(nl);
-  for (int j = 0; j < nl; ++j) (j < nt ? out.fn : out.ft)[finger[j]] = lambda[j];
-  for (int i = 0; i < m; ++i)  // friction of the sliding contacts, along t_i
-    if (set.touches(i) && kinetic(i))
-      out.ft[i] = -mu_slide * (slip[i] > 0.0 ? 1.0 : -1.0) * out.fn[i];
-  const Eigen::VectorXd gen = b - N * lambda;
-  for (int j = 0; j < nu; ++j) out.tau[j] = gen[layout::inputToConfig(j)];
+  Eigen::VectorXd x;
+  if (maximiseMargin(A_eq, b_eq, G, h, nt, nl, x) != SolveStatus::kOptimal) return out;
+  storeForces(x, cols, b, set, sliding, m, nt, nl, nu, out);
   return out;
 }
 

@@ -65,6 +65,9 @@ class PivotTurnSearch {
   const PivotTurnSettings& settings() const { return settings_; }
 
  private:
+  /// \brief One search() in progress: its leads, lattice and best path, and its steps
+  ///        (pivot_turn_search_run.h).
+  class Run;
   /// \brief The rigid run from `from` (its set) to base angle `theta`, every angle_step at
   ///        most; empty when a waypoint is not valid.
   std::vector<SupportStep> rigidRun(const SupportStep& from, double theta);
