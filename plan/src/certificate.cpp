@@ -114,6 +114,25 @@ std::string stopText(const Certificate& c) {
   return buf;
 }
 
+const char* toString(TrialLaw law) {
+  switch (law) {
+    case TrialLaw::kPartFeedback:
+      return "part feedback";
+    case TrialLaw::kJointFeedback:
+      return "joint feedback";
+    case TrialLaw::kOpenLoop:
+      return "open loop";
+  }
+  return "?";
+}
+
+TrialLaw parseTrialLaw(std::string_view name, const std::string& where) {
+  for (TrialLaw law : {TrialLaw::kPartFeedback, TrialLaw::kJointFeedback, TrialLaw::kOpenLoop})
+    if (name == toString(law)) return law;
+  throw InputError(where + ": unknown law '" + std::string(name) +
+                   "' (part feedback, joint feedback or open loop)");
+}
+
 std::string verdictText(const Certificate& c) {
   if (!c.ran) return "not certified: no trials ran";
   std::string text = (c.certified ? "certified: " : "NOT certified: ") + ratesText(c);
@@ -146,7 +165,7 @@ std::string worstTrialText(const Certificate& c) {
 
 std::string certificateReportText(const Certificate& c) {
   char buf[256];
-  std::snprintf(buf, sizeof buf, "certificate (%s, %d trials, seed %llu): %s\n", c.law.c_str(),
+  std::snprintf(buf, sizeof buf, "certificate (%s, %d trials, seed %llu): %s\n", toString(c.law),
                 c.trials, static_cast<unsigned long long>(c.seed),
                 c.certified ? "CERTIFIED" : "NOT CERTIFIED");
   std::string text = buf;
@@ -266,7 +285,9 @@ Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateS
   checkFits(model, plan, s);
   const FeedbackSchedule schedule = makeSchedule(model, plan, s);
   Certificate c;
-  c.law = s.open_loop ? "open loop" : schedule.partFeedback() ? "part feedback" : "joint feedback";
+  c.law = s.open_loop               ? TrialLaw::kOpenLoop
+          : schedule.partFeedback() ? TrialLaw::kPartFeedback
+                                    : TrialLaw::kJointFeedback;
   c.confidence = s.confidence;
   c.required_rate = s.required_rate;
   c.sequential = s.trials == 0;

@@ -57,7 +57,7 @@ struct Reader {
 /// The counts and their bound (law, trials, successes, success_rate, confidence,
 /// lower_bound): a file whose bound does not follow from its counts is refused.
 void readCounts(const Reader& rd, const json& j, Certificate& c) {
-  c.law = rd.text(j, "law");
+  c.law = parseTrialLaw(rd.text(j, "law"), rd.where + ".law");
   c.trials = static_cast<int>(rd.integer(j, "trials", 1, 100000));
   c.successes = static_cast<int>(rd.integer(j, "successes", 0, c.trials));
   c.success_rate = rd.num(j, "success_rate");
@@ -205,7 +205,7 @@ json certificateJson(const Certificate& c) {
     worst["departure_time"] = w.departure_time;
     worst["departure_phase"] = w.departure_phase;
   }
-  json out = {{"law", c.law},
+  json out = {{"law", toString(c.law)},
               {"trials", c.trials},
               {"successes", c.successes},
               {"success_rate", c.success_rate},

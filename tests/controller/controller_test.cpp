@@ -225,7 +225,7 @@ TEST(ReorientationController, AutoPlansWithSupportsFirstAndTracksWithTheJointLaw
   EXPECT_EQ(plan.planner, "support");
   EXPECT_TRUE(plan.joint_feedback);
   EXPECT_TRUE(record.certificate.certified);
-  EXPECT_EQ(record.certificate.law, "joint feedback");
+  EXPECT_EQ(record.certificate.law, plan::TrialLaw::kJointFeedback);
   expectTrackRunsThePlansLaw(c, plan, 1u, 1.0);
 }
 

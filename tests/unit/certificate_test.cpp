@@ -112,7 +112,7 @@ TEST(Certificate, APartSlidingOnTwoFrictionlessTipsIsHeldOnlyWithPartFeedback) {
   s.trials = 8;
   std::vector<TrialOutcome> part;
   const Certificate fed = certify(twoTipsModel(), plan, s, &part);
-  EXPECT_EQ(fed.law, "part feedback");
+  EXPECT_EQ(fed.law, TrialLaw::kPartFeedback);
   for (const TrialOutcome& o : part) {
     EXPECT_FALSE(o.dropped) << "trial " << o.index << ": " << o.failure;
     EXPECT_LE(o.position_error, 0.01) << "trial " << o.index;
@@ -123,11 +123,11 @@ TEST(Certificate, APartSlidingOnTwoFrictionlessTipsIsHeldOnlyWithPartFeedback) {
   const RbsfModel joints_only(blind);
   std::vector<TrialOutcome> joint, open;
   const Certificate jc = certify(joints_only, plan, s, &joint);
-  EXPECT_EQ(jc.law, "joint feedback");
+  EXPECT_EQ(jc.law, TrialLaw::kJointFeedback);
   for (const TrialOutcome& o : joint) EXPECT_TRUE(o.dropped) << "trial " << o.index;
   s.open_loop = true;
   const Certificate oc = certify(twoTipsModel(), plan, s, &open);
-  EXPECT_EQ(oc.law, "open loop");
+  EXPECT_EQ(oc.law, TrialLaw::kOpenLoop);
   for (const TrialOutcome& o : open) EXPECT_TRUE(o.dropped) << "trial " << o.index;
   EXPECT_EQ(jc.successes, 0);
   EXPECT_GT(fed.successes, jc.successes);

@@ -102,7 +102,7 @@ TEST(ReorientationPipeline, OnABlindCellTheWrittenPlanIsHeldByTheJoints) {
   const PipelineOutcome out =
       ReorientationPipeline(model, fewTrials(PipelineMethod::kAuto)).run(turn(-30));
   ASSERT_EQ(out.status, PipelineStatus::kCertified) << verdictText(out.record.certificate);
-  EXPECT_EQ(out.record.certificate.law, "joint feedback");
+  EXPECT_EQ(out.record.certificate.law, TrialLaw::kJointFeedback);
   // Measured again from the plan: at least 3 independent rows but for short transitions.
   const PlanHolding h = measureHolding(model, out.record.plan, HoldingSettings{});
   ASSERT_TRUE(h.measured);

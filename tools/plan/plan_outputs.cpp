@@ -102,7 +102,8 @@ void PlanOutputs::write(const RbsfModel& model, const plan::PlanRecord& record,
       if (record.certificate.ran) {
         const plan::Certificate& c = record.certificate;
         verdict = {true, c.certified, plan::verdictText(c),
-                   "Law: " + c.law + ". Worst " + plan::worstTrialText(c) + "."};
+                   "Law: " + std::string(plan::toString(c.law)) + ". Worst " +
+                       plan::worstTrialText(c) + "."};
         rows.emplace_back("certificate",
                           format("%.0f trials, seed %.0f", c.trials, static_cast<double>(c.seed)) +
                               "; " +

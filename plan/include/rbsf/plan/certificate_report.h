@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "rbsf/dynamics/core/sensing.h"
 #include "rbsf/plan/plan_holding.h"
@@ -35,11 +36,20 @@ struct TrialOutcome {
   std::string departure_phase;   ///< the plan's phase letter there ("hold" after its end)
 };
 
+/// \brief The control law a certificate's trials ran (certificate.h): the plan's law with
+///        part feedback, with joint feedback only, or the plan's inputs open loop.
+enum class TrialLaw { kPartFeedback, kJointFeedback, kOpenLoop };
+
+/// \brief "part feedback", "joint feedback" or "open loop", the words of plan files.
+const char* toString(TrialLaw law);
+/// \brief The law named `name` (toString's words). \throws InputError naming `where`.
+TrialLaw parseTrialLaw(std::string_view name, const std::string& where);
+
 /// \brief The verdict over a set of trials (certificate.h).
 struct Certificate {
   bool ran = false;
-  std::string law;  ///< "part feedback", "joint feedback" or "open loop"
-  int trials = 0;   ///< trials run and counted
+  TrialLaw law = TrialLaw::kPartFeedback;
+  int trials = 0;  ///< trials run and counted
   int successes = 0;
   double success_rate = 0.0;  ///< successes / trials
   /// \brief The one-sided Clopper-Pearson lower bound of the success rate at `confidence`
