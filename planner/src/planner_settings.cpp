@@ -36,15 +36,6 @@ std::optional<KinodynamicPlanner> parsePlanner(std::string_view name) {
   return std::nullopt;
 }
 
-const std::vector<std::string>& plannerNames() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (KinodynamicPlanner p : kinodynamicPlanners()) out.emplace_back(toString(p));
-    return out;
-  }();
-  return names;
-}
-
 void checkSettings(const DecisiveModes& rule) {
   if (rule.settle_steps < 0)
     throw InputError("decisive modes: settle_steps must be >= 0 (got " +

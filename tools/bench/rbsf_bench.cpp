@@ -57,8 +57,7 @@ std::vector<std::string> parsePlanners(const std::string& text) {
   std::vector<std::string> out;
   std::istringstream in(text);
   for (std::string name; std::getline(in, name, ',');) {
-    const auto& known = planner::plannerNames();
-    if (name != kSupportPlanner && std::find(known.begin(), known.end(), name) == known.end())
+    if (name != kSupportPlanner && !planner::parsePlanner(name))
       throw InputError("--planners: unknown planner '" + name +
                        "' (choose from KPIECE1, RRT, SST, EST, PDST, Support)");
     if (std::find(out.begin(), out.end(), name) != out.end())

@@ -95,12 +95,9 @@ int PlanRefiner::candidates(const plan::PlanMargins& margins) const {
 
 RefinementCandidate PlanRefiner::candidate(const plan::Plan& plan, const plan::PlanMargins& margins,
                                            int k) const {
-  RefinementCandidate c = k == 0 && !margins.support
-                              ? solve(optimizer_, plan)
-                              : solve(PlanOptimizer(model(), settingsFor(margins, k)), plan);
-  c.label =
-      k == 0 ? "first solve"
-             : "retry with min_slip_rate " + std::to_string(settingsFor(margins, k).min_slip_rate);
+  const OptimizerSettings s = settingsFor(margins, k);
+  RefinementCandidate c = solve(PlanOptimizer(model(), s), plan);
+  c.label = k == 0 ? "first solve" : "retry with min_slip_rate " + std::to_string(s.min_slip_rate);
   return c;
 }
 

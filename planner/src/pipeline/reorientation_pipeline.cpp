@@ -247,10 +247,7 @@ ReorientationPipeline::ReorientationPipeline(const RbsfModel& model, PipelineSet
 }
 
 PipelineOutcome ReorientationPipeline::run(const Problem& problem, const RunContext& context) {
-  {
-    PlannerSettings ps = settings_.planner;
-    ReorientationPlanner(model_, ps).checkProblem(problem);  // bad input before any search
-  }
+  ReorientationPlanner(model_, settings_.planner).checkProblem(problem);  // before any search
   std::optional<trajopt::PlanRefiner> refiner;
   if (settings_.optimize) {
     trajopt::OptimizerSettings os = settings_.optimizer;

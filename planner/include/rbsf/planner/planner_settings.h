@@ -124,9 +124,6 @@ struct Problem {
 ///        \throws InputError naming the tolerance.
 void checkTolerance(const GoalTolerance& tolerance);
 
-/// \brief The names of kinodynamicPlanners(), for lists in messages and options.
-const std::vector<std::string>& plannerNames();
-
 /// \brief The rules of DecisiveModes: settle_steps >= 0, cone_margin in (0, 1].
 ///        \throws InputError naming the setting and its value.
 void checkSettings(const DecisiveModes& rule);

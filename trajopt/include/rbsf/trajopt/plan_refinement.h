@@ -91,7 +91,7 @@ class PlanRefiner {
  private:
   /// \brief The optimiser's settings of candidate `k` of a plan with `margins`.
   OptimizerSettings settingsFor(const plan::PlanMargins& margins, int k) const;
-  PlanOptimizer optimizer_;  ///< checks the settings; solves the kinodynamic first candidate
+  PlanOptimizer optimizer_;  ///< the cell and the settings, checked when made
   RefineSettings refine_;
 };
 

@@ -11,7 +11,7 @@
 ///   - propagator SimPropagator (steps_per_control simulator steps per propagation step,
 ///     min..max_control_steps per control), validity SupportValidityChecker;
 ///   - start: the checked start configuration at rest; goal PoseGoal;
-///   - the planner by name (plannerNames()) inside a StopAtGoalPlanner (the search ends
+///   - the planner (KinodynamicPlanner) inside a StopAtGoalPlanner (the search ends
 ///     at the first exact solution, whoever's termination condition runs it), set on the
 ///     SimpleSetup.
 /// The setup refers to the ReorientationPlanner's model and simulator: the planner must

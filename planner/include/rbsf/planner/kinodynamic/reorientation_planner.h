@@ -10,7 +10,7 @@
 ///     max_control_steps propagation steps; controls from PhaseControlSampler;
 ///   - propagator SimPropagator (with the decisive-modes rule, propagator.h), validity
 ///     SupportValidityChecker (which refuses what that rule marks), goal PoseGoal;
-///   - planner by name (plannerNames()): KPIECE1 (default), RRT, SST, EST, PDST,
+///   - planner (KinodynamicPlanner): KPIECE1 (default), RRT, SST, EST, PDST,
 ///     single-threaded; ompl::RNG::setSeed(seed) before anything is created, so the same
 ///     seed and settings give the same plan when the search ends by reaching the goal.
 /// setup() builds these OMPL objects (planner_setup.h) for the benchmark tool; solve()

@@ -38,7 +38,7 @@
 
 namespace rbsf::bench {
 
-/// \brief The support planner's name in --planners (the others: planner::plannerNames()).
+/// \brief The support planner's name in --planners (the others: planner::parsePlanner's names).
 inline const std::string kSupportPlanner = "Support";
 
 /// \brief Settings shared by every run.
