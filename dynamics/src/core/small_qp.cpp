@@ -292,6 +292,135 @@ QpStatus SmallQp::finish(QpStatus result, int adding_row, double adding_multipli
   return result;
 }
 
+// x = -H^-1 g = -J J^T g, the unconstrained minimum; x_scale_ = |x|_inf.
+void SmallQp::unconstrainedMinimum() {
+  const int n = n_;
+  for (int i = 0; i < n; ++i) x[i] = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const double* jj = J_.col(j).data();
+    double t = 0.0;
+    for (int i = 0; i <= j; ++i) t += jj[i] * g[i];
+    for (int i = 0; i <= j; ++i) x[i] -= t * jj[i];
+  }
+
+  double scale = 0.0;
+  for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(x[i]));
+  x_scale_ = scale;
+}
+
+// Per inequality row: |a_i|^2 and the two parts of its violation threshold.
+void SmallQp::prepareRowTolerances() {
+  const int n = n_, mi = mi_;
+  for (int i = 0; i < mi; ++i) {
+    row_norm2_[i] = 0.0;
+    tol_scaled_[i] = 0.0;
+  }
+  for (int j = 0; j < n; ++j) {
+    const double* aj = A.col(j).data();
+    for (int i = 0; i < mi; ++i) {
+      row_norm2_[i] += aj[i] * aj[i];
+      tol_scaled_[i] += std::abs(aj[i]);
+    }
+  }
+  for (int i = 0; i < mi; ++i) {
+    tol_scaled_[i] *= feasibility_tolerance;
+    tol_fixed_[i] = feasibility_tolerance * std::abs(b[i]);
+  }
+}
+
+// Equalities: a full step each, of either sign; a dependent row is skipped when consistent
+// with the earlier ones. False (after finish()) when one is inconsistent.
+bool SmallQp::addEqualities() {
+  const int n = n_, me = me_;
+  for (int e = 0; e < me; ++e) {
+    double residual = b_eq[e], norm1 = 0.0;
+    for (int j = 0; j < n; ++j) {
+      a_[j] = A_eq(e, j);
+      residual -= a_[j] * x[j];
+      norm1 += std::abs(a_[j]);
+    }
+    computeDirections(a_);
+    if (dependent()) {
+      if (std::abs(residual) <= feasibility_tolerance * (std::abs(b_eq[e]) + norm1 * x_scale_)) {
+        continue;  // consistent with the earlier rows: redundant
+      }
+      infeasible_equality = e;
+      finish(QpStatus::kInfeasible, -1, 0.0);
+      return false;
+    }
+    const double t = residual / d2_norm2_;
+    step(t);
+    for (int k = 0; k < q_; ++k) u_[k] -= t * r_[k];
+    addToActiveSet(-e - 1, t);
+    ++iterations;
+  }
+  return true;
+}
+
+// Partial (dual) step of computeDirections()'s r: the largest t1 that keeps the active
+// inequality multipliers >= 0, and the position of the row that blocks it (-1 and kInf if
+// none does).
+int SmallQp::blockingRow(double& t1) const {
+  t1 = kInf;
+  int blocking = -1;
+  for (int k = 0; k < q_; ++k) {
+    if (code_[k] >= 0 && r_[k] > 0.0) {
+      const double ratio = u_[k] / r_[k];
+      if (ratio < t1) {
+        t1 = ratio;
+        blocking = k;
+      }
+    }
+  }
+  return blocking;
+}
+
+// Adds the violated inequality row p: partial steps, each dropping the blocking row, until
+// the full step makes row p hold and it joins the active set. False (after finish()) when
+// the solve ends on the way: row p cannot be satisfied, or the iteration limit.
+bool SmallQp::addInequality(int p) {
+  const int n = n_;
+  for (int j = 0; j < n; ++j) a_[j] = A(p, j);
+  double s_p = slack_[p];
+  double u_plus = 0.0;  // multiplier of row p so far
+  for (;;) {
+    if (iterations >= max_iterations) {
+      finish(QpStatus::kMaxIterations, p, u_plus);
+      return false;
+    }
+    computeDirections(a_);
+    double t1 = kInf;
+    const int blocking = blockingRow(t1);
+    // Full (primal) step: row p holds. After partial steps rounding may leave s_p >= 0.
+    const bool no_primal_step = dependent();
+    const double t2 = no_primal_step ? kInf : std::max(0.0, -s_p / d2_norm2_);
+    if (no_primal_step && blocking < 0) {
+      infeasible_inequality = p;
+      finish(QpStatus::kInfeasible, p, u_plus);
+      return false;
+    }
+    const double t = std::min(t1, t2);
+    if (!no_primal_step) {
+      step(t);
+    }
+    for (int k = 0; k < q_; ++k) {
+      u_[k] -= t * r_[k];
+      if (code_[k] >= 0 && u_[k] < 0.0) u_[k] = 0.0;  // rounding at the blocking row
+    }
+    u_plus += t;
+    ++iterations;
+    if (t2 <= t1) {
+      addToActiveSet(p, u_plus);
+      is_active_[p] = true;
+      return true;
+    }
+    is_active_[code_[blocking]] = false;
+    dropFromActiveSet(blocking);
+    s_p = -b[p];
+    for (int j = 0; j < n; ++j) s_p += a_[j] * x[j];
+  }
+}
+
 QpStatus SmallQp::solve() {
   const int n = n_, me = me_, mi = mi_;
   iterations = 0;
@@ -309,108 +438,15 @@ QpStatus SmallQp::solve() {
     return status;
   }
 
-  // The unconstrained minimum x = -H^-1 g = -J J^T g.
-  for (int i = 0; i < n; ++i) x[i] = 0.0;
-  for (int j = 0; j < n; ++j) {
-    const double* jj = J_.col(j).data();
-    double t = 0.0;
-    for (int i = 0; i <= j; ++i) t += jj[i] * g[i];
-    for (int i = 0; i <= j; ++i) x[i] -= t * jj[i];
-  }
-
-  double scale = 0.0;
-  for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(x[i]));
-  x_scale_ = scale;
-
-  // Per inequality row: |a_i|^2 and the two parts of its violation threshold.
-  for (int i = 0; i < mi; ++i) {
-    row_norm2_[i] = 0.0;
-    tol_scaled_[i] = 0.0;
-  }
-  for (int j = 0; j < n; ++j) {
-    const double* aj = A.col(j).data();
-    for (int i = 0; i < mi; ++i) {
-      row_norm2_[i] += aj[i] * aj[i];
-      tol_scaled_[i] += std::abs(aj[i]);
-    }
-  }
-  for (int i = 0; i < mi; ++i) {
-    tol_scaled_[i] *= feasibility_tolerance;
-    tol_fixed_[i] = feasibility_tolerance * std::abs(b[i]);
-  }
-
-  // Equalities: a full step each, of either sign.
-  for (int e = 0; e < me; ++e) {
-    double residual = b_eq[e], norm1 = 0.0;
-    for (int j = 0; j < n; ++j) {
-      a_[j] = A_eq(e, j);
-      residual -= a_[j] * x[j];
-      norm1 += std::abs(a_[j]);
-    }
-    computeDirections(a_);
-    if (dependent()) {
-      if (std::abs(residual) <= feasibility_tolerance * (std::abs(b_eq[e]) + norm1 * x_scale_)) {
-        continue;  // consistent with the earlier rows: redundant
-      }
-      infeasible_equality = e;
-      return finish(QpStatus::kInfeasible, -1, 0.0);
-    }
-    const double t = residual / d2_norm2_;
-    step(t);
-    for (int k = 0; k < q_; ++k) u_[k] -= t * r_[k];
-    addToActiveSet(-e - 1, t);
-    ++iterations;
-  }
+  unconstrainedMinimum();
+  prepareRowTolerances();
+  if (!addEqualities()) return status;
 
   // Inequalities: add the most violated row until none is.
   for (;;) {
     const int p = mostViolatedRow();
     if (p < 0) return finish(QpStatus::kOptimal, -1, 0.0);
-    for (int j = 0; j < n; ++j) a_[j] = A(p, j);
-    double s_p = slack_[p];
-    double u_plus = 0.0;  // multiplier of row p so far
-    for (;;) {
-      if (iterations >= max_iterations) return finish(QpStatus::kMaxIterations, p, u_plus);
-      computeDirections(a_);
-      // Partial (dual) step: the largest that keeps the active inequality multipliers >= 0.
-      double t1 = kInf;
-      int blocking = -1;
-      for (int k = 0; k < q_; ++k) {
-        if (code_[k] >= 0 && r_[k] > 0.0) {
-          const double ratio = u_[k] / r_[k];
-          if (ratio < t1) {
-            t1 = ratio;
-            blocking = k;
-          }
-        }
-      }
-      // Full (primal) step: row p holds. After partial steps rounding may leave s_p >= 0.
-      const bool no_primal_step = dependent();
-      const double t2 = no_primal_step ? kInf : std::max(0.0, -s_p / d2_norm2_);
-      if (no_primal_step && blocking < 0) {
-        infeasible_inequality = p;
-        return finish(QpStatus::kInfeasible, p, u_plus);
-      }
-      const double t = std::min(t1, t2);
-      if (!no_primal_step) {
-        step(t);
-      }
-      for (int k = 0; k < q_; ++k) {
-        u_[k] -= t * r_[k];
-        if (code_[k] >= 0 && u_[k] < 0.0) u_[k] = 0.0;  // rounding at the blocking row
-      }
-      u_plus += t;
-      ++iterations;
-      if (t2 <= t1) {
-        addToActiveSet(p, u_plus);
-        is_active_[p] = true;
-        break;
-      }
-      is_active_[code_[blocking]] = false;
-      dropFromActiveSet(blocking);
-      s_p = -b[p];
-      for (int j = 0; j < n; ++j) s_p += a_[j] * x[j];
-    }
+    if (!addInequality(p)) return status;
   }
 }
 

@@ -208,6 +208,18 @@ class SmallQp {
 
  private:
   bool factorize();
+  /// \brief x = -H^-1 g, the unconstrained minimum, and x_scale_ = |x|_inf.
+  void unconstrainedMinimum();
+  /// \brief |a_i|^2 and the two parts of the violation threshold of every inequality row.
+  void prepareRowTolerances();
+  /// \brief Adds the equality rows; false (status set by finish()) if one is inconsistent.
+  bool addEqualities();
+  /// \brief Adds the violated inequality row p, dropping blocking rows on the way; false
+  ///        (status set by finish()) if the solve ended: p infeasible or iteration limit.
+  bool addInequality(int p);
+  /// \brief The active position whose multiplier limits the partial step, -1 if none;
+  ///        t1 gets that step (kInf if none).
+  int blockingRow(double& t1) const;
   void computeDirections(const QpVecN& a);
   bool dependent() const;
   void addToActiveSet(int code, double multiplier);
