@@ -170,24 +170,21 @@ void makeDir(const std::string& dir, const std::string& what) {
     throw InputError(what + ": cannot create the folder '" + dir + "'");
 }
 
-int runBenchmarks(const Options& o) {
-  const std::vector<BenchProblem> problems = loadProblemSuite(o.problems);
-  const std::vector<std::string> planners = parsePlanners(o.planners);
-  const int runs = positiveInt(o.runs, "--runs", 100000);
-  const int jobs = positiveInt(o.jobs, "--jobs", 256);
-  RunSettings rs;
-  rs.time_limit = tools::parseNumber(o.time_limit, "--time-limit");
-  if (rs.time_limit <= 0.0) throw InputError("--time-limit: must be positive");
-  rs.optimize = o.optimize;
-  int shard_k = 1, shard_n = 1;
-  if (!o.shard.empty()) parseShard(o.shard, "--shard", shard_k, shard_n);
-
-  // Every cell loaded and every problem checked before any run (bad input: exit 2).
+/// The suite's problems with their cells, each cell loaded once.
+struct Suite {
+  std::vector<BenchProblem> problems;
   std::vector<std::string> names;
-  std::map<std::string, std::unique_ptr<RbsfModel>> models;
-  for (const BenchProblem& p : problems) {
-    names.push_back(p.name);
-    auto& m = models[p.cell_path];
+  std::map<std::string, std::unique_ptr<RbsfModel>> models;  // by cell path
+
+  const RbsfModel& model(const BenchProblem& p) const { return *models.at(p.cell_path); }
+};
+
+/// Every cell of the suite's problems loaded and every problem checked before any run (bad
+/// input: exit 2).
+void loadCells(const Options& o, Suite& suite) {
+  for (const BenchProblem& p : suite.problems) {
+    suite.names.push_back(p.name);
+    auto& m = suite.models[p.cell_path];
     try {
       if (!m) m = std::make_unique<RbsfModel>(loadCell(p.cell_path));
       planner::ReorientationPlanner(*m, planner::PlannerSettings{}).checkProblem(p.problem);
@@ -195,25 +192,46 @@ int runBenchmarks(const Options& o) {
       throw InputError(o.problems + ": problem " + p.name + ": " + e.what());
     }
   }
-  const std::vector<RunSpec> all = makeRunList(names, planners, runs);
-  const std::vector<RunSpec> mine = shard_n > 1 ? shardOf(all, shard_k, shard_n) : all;
-  if (o.list) {
-    std::printf("index,problem,planner,run,seed\n");
-    for (const RunSpec& r : mine)
-      std::printf("%zu,%s,%s,%d,%u\n", r.index, names[r.problem].c_str(), r.planner.c_str(), r.run,
-                  r.seed);
-    return 0;
-  }
-  makeDir(o.out, "--out");
-  const std::string scratch = (fs::path(o.out) / ".runs").string();
-  makeDir(scratch, "--out");
+}
 
-  std::fprintf(stderr,
-               "rbsf-bench: %zu runs%s (%zu problems x %zu planners x %d), %d job%s, "
-               "time limit %g s\n",
-               mine.size(), shard_n > 1 ? (" in shard " + o.shard).c_str() : "", problems.size(),
-               planners.size(), runs, jobs, jobs > 1 ? "s" : "", rs.time_limit);
-  std::vector<ExperimentLog> logs(problems.size());
+/// Run `spec` in this (child) process, its log written to `log`; exits 0, or 1 with a
+/// message on stderr.
+[[noreturn]] void runChild(const Suite& suite, const RunSpec& spec, const RunSettings& rs,
+                           const std::string& log) {
+  int code = 0;
+  try {
+    const BenchProblem& p = suite.problems[spec.problem];
+    runSingle(p, suite.model(p), spec, rs, log);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rbsf-bench: run %zu: %s\n", spec.index, e.what());
+    code = 1;
+  }
+  std::fflush(stderr);
+  _exit(code);
+}
+
+/// The log of a finished child process: the one it wrote, or a crash record when it did
+/// not exit 0.
+ExperimentLog childLog(const Suite& suite, const RunSpec& spec, int status, double seconds,
+                       const std::string& scratch, const RunSettings& rs) {
+  const std::string path = scratch + "/" + std::to_string(spec.index) + ".log";
+  ExperimentLog one;
+  const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (ok) {
+    one = readLog(path);
+    std::remove(path.c_str());
+  } else {
+    one = emptyExperiment(suite.names[spec.problem], rs.time_limit);
+    one.planners.push_back({"control_" + spec.planner, {}, {crashRun(spec, seconds)}, {}});
+  }
+  return one;
+}
+
+/// Runs `mine`, `jobs` at a time, each in a child process (crash isolation); the logs
+/// merged per problem.
+std::vector<ExperimentLog> runAll(const Suite& suite, const std::vector<RunSpec>& mine,
+                                  const RunSettings& rs, int jobs, const std::string& scratch) {
+  std::vector<ExperimentLog> logs(suite.problems.size());
   struct Child {
     RunSpec spec;
     Clock::time_point start;
@@ -231,18 +249,7 @@ int runBenchmarks(const Options& o) {
       std::fflush(stderr);
       const pid_t pid = fork();
       if (pid < 0) throw std::runtime_error("cannot start a run process");
-      if (pid == 0) {
-        int code = 0;
-        try {
-          const BenchProblem& p = problems[spec.problem];
-          runSingle(p, *models[p.cell_path], spec, rs, log);
-        } catch (const std::exception& e) {
-          std::fprintf(stderr, "rbsf-bench: run %zu: %s\n", spec.index, e.what());
-          code = 1;
-        }
-        std::fflush(stderr);
-        _exit(code);
-      }
+      if (pid == 0) runChild(suite, spec, rs, log);
       children[pid] = {spec, Clock::now()};
     }
     int status = 0;
@@ -260,22 +267,50 @@ int runBenchmarks(const Options& o) {
     children.erase(it);
     ++finished;
     const double seconds = std::chrono::duration<double>(Clock::now() - c.start).count();
-    const std::string path = scratch + "/" + std::to_string(c.spec.index) + ".log";
-    ExperimentLog one;
-    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    if (ok) {
-      one = readLog(path);
-      std::remove(path.c_str());
-    } else {
-      one = emptyExperiment(names[c.spec.problem], rs.time_limit);
-      one.planners.push_back({"control_" + c.spec.planner, {}, {crashRun(c.spec, seconds)}, {}});
-    }
+    const ExperimentLog one = childLog(suite, c.spec, status, seconds, scratch, rs);
     mergeLog(logs[c.spec.problem], one);
     const LogRun& run = one.planners.front().runs.front();
     std::fprintf(stderr, "[%zu/%zu] %s %s run %d (seed %u): %s\n", finished, mine.size(),
-                 names[c.spec.problem].c_str(), c.spec.planner.c_str(), c.spec.run, c.spec.seed,
-                 describe(run, rs.time_limit, one.enums).c_str());
+                 suite.names[c.spec.problem].c_str(), c.spec.planner.c_str(), c.spec.run,
+                 c.spec.seed, describe(run, rs.time_limit, one.enums).c_str());
   }
+  return logs;
+}
+
+int runBenchmarks(const Options& o) {
+  Suite suite;
+  suite.problems = loadProblemSuite(o.problems);
+  const std::vector<std::string> planners = parsePlanners(o.planners);
+  const int runs = positiveInt(o.runs, "--runs", 100000);
+  const int jobs = positiveInt(o.jobs, "--jobs", 256);
+  RunSettings rs;
+  rs.time_limit = tools::parseNumber(o.time_limit, "--time-limit");
+  if (rs.time_limit <= 0.0) throw InputError("--time-limit: must be positive");
+  rs.optimize = o.optimize;
+  int shard_k = 1, shard_n = 1;
+  if (!o.shard.empty()) parseShard(o.shard, "--shard", shard_k, shard_n);
+  loadCells(o, suite);
+
+  const std::vector<RunSpec> all = makeRunList(suite.names, planners, runs);
+  const std::vector<RunSpec> mine = shard_n > 1 ? shardOf(all, shard_k, shard_n) : all;
+  if (o.list) {
+    std::printf("index,problem,planner,run,seed\n");
+    for (const RunSpec& r : mine)
+      std::printf("%zu,%s,%s,%d,%u\n", r.index, suite.names[r.problem].c_str(), r.planner.c_str(),
+                  r.run, r.seed);
+    return 0;
+  }
+  makeDir(o.out, "--out");
+  const std::string scratch = (fs::path(o.out) / ".runs").string();
+  makeDir(scratch, "--out");
+
+  std::fprintf(stderr,
+               "rbsf-bench: %zu runs%s (%zu problems x %zu planners x %d), %d job%s, "
+               "time limit %g s\n",
+               mine.size(), shard_n > 1 ? (" in shard " + o.shard).c_str() : "",
+               suite.problems.size(), planners.size(), runs, jobs, jobs > 1 ? "s" : "",
+               rs.time_limit);
+  std::vector<ExperimentLog> logs = runAll(suite, mine, rs, jobs, scratch);
   std::error_code ec;
   fs::remove_all(scratch, ec);
   std::vector<ExperimentLog> done;

@@ -132,7 +132,7 @@ void printSummary(const Summary& s, const SimState& state, const RbsfModel& mode
   if (!o.svg.empty()) std::printf("animation            %s\n", o.svg.c_str());
 }
 
-int run(int argc, char** argv) {
+Options parseOptions(int argc, char** argv) {
   CLI::App app{
       "Simulate a cell under piecewise-constant inputs through stick, slip, separation and "
       "renewed contact, the part starting at rest on the fingers placed by the placement "
@@ -154,18 +154,101 @@ int run(int argc, char** argv) {
       "with one message on stderr and no file written; 130 stopped by SIGINT, 143 by SIGTERM "
       "(no file written); 1 internal error.");
   parseCommandLine(app, argc, argv);
+  return o;
+}
 
-  const RbsfModel model(loadCell(o.cell));
-  const int m = model.numFingers();
-  const Pose pose = parsePose(o.start, "--start");
+/// --theta, within the cell's base range [rad].
+double startTheta(const RbsfModel& model, const Options& o) {
   const double theta = parseAngle(o.theta, "--theta");
   const BaseParams& base = model.cell().base;
   if (theta < base.theta_min || theta > base.theta_max)
     throw InputError("--theta: " + numberText(theta) + " rad is outside the base range [" +
                      numberText(base.theta_min) + ", " + numberText(base.theta_max) + "] rad");
+  return theta;
+}
+
+/// --dt, in (0, kMaxTimeStep] [s].
+double timeStep(const Options& o) {
   const double h = parseNumber(o.dt, "--dt");
   if (!(h > 0.0 && h <= kMaxTimeStep))
     throw InputError("--dt: must be in (0, " + numberText(kMaxTimeStep) + "] s, got " + o.dt);
+  return h;
+}
+
+/// The run's steps, checked against what --out and --svg can hold.
+void checkRunLength(const std::vector<long>& steps, const TrajectoryWriter* writer,
+                    const Options& o, double h, long frame_stride) {
+  long total_steps = 0;
+  for (long n : steps) total_steps += n;
+  if (writer && static_cast<std::size_t>(total_steps) > writer->maxSamples())
+    throw InputError("--out: the run takes " + std::to_string(total_steps) +
+                     " steps, a sample each; at most " + std::to_string(writer->maxSamples()) +
+                     " are written (shorten the run or take a larger --dt)");
+  if (!o.svg.empty() && total_steps / frame_stride > kMaxSvgFrames)
+    throw InputError("--svg: the run is " + numberText(total_steps * h) +
+                     " s long; an animation shows at most " +
+                     numberText(kMaxSvgFrames * kSvgFrameTime) + " s");
+}
+
+/// What one run did: its summary, the end state, the animation's frames, its steps and
+/// when the part fell off the fingers (-1: it did not).
+struct Outcome {
+  Summary summary;
+  SimState state;
+  std::vector<TrajectorySample> frames;  // for --svg
+  long total = 0;
+  double fell_at = -1.0;
+};
+
+/// The run from q0 at rest under the schedule's held inputs; stops early when the part
+/// falls off or on SIGINT/SIGTERM. Samples go to `writer` (when given), frames every
+/// `frame_stride` steps (when `frames`).
+Outcome simulate(const RbsfModel& model, const VecQ& q0, double h, const ControlSchedule& schedule,
+                 const std::vector<long>& steps, long frame_stride, bool frames,
+                 TrajectoryWriter* writer) {
+  const int m = model.numFingers();
+  SimulatorSettings settings;
+  settings.time_step = h;
+  const Simulator sim(model, settings);
+  SimulatorWorkspace ws(m);
+  Outcome out{Summary{}, SimState(q0, VecQ::Zero(m + 4)), {}, 0, -1.0};
+  InterruptFlag::install();  // SIGINT or SIGTERM: stop at the next step, write nothing
+  std::vector<VecU> taus;
+  for (const auto& seg : schedule.segments()) taus.push_back(seg.tau);
+  HeldInputs inputs(steps, taus);
+  const long last = inputs.totalSteps() - 1;
+  out.total = rollout(
+      sim, out.state, inputs.totalSteps(), ws, inputs,
+      [&](const SimState& now, const StepReport& report, const VecU& tau, long n) {
+        if (!now.q.allFinite() || !now.v.allFinite())
+          throw std::runtime_error("the simulation diverged at t = " + numberText(now.t) + " s");
+        out.summary.add(report, now.t, m);
+        const TrajectorySample sample = trajectorySample(now, report, tau);
+        if (writer) writer->add(sample);
+        if (frames) {
+          if (out.frames.empty()) {  // t = 0: the start at rest, with the first step's forces
+            out.frames.push_back(sample);
+            out.frames.back().t = 0.0, out.frames.back().q = q0, out.frames.back().v.setZero();
+          }
+          if ((n + 1) % frame_stride == 0 || n == last) out.frames.push_back(sample);
+        }
+        if (InterruptFlag::raised()) return false;
+        if (fellOff(now.q, q0)) {
+          out.fell_at = now.t;  // off the fingers: what follows is a free fall
+          return false;
+        }
+        return true;
+      });
+  return out;
+}
+
+int run(int argc, char** argv) {
+  const Options o = parseOptions(argc, argv);
+  const RbsfModel model(loadCell(o.cell));
+  const int m = model.numFingers();
+  const Pose pose = parsePose(o.start, "--start");
+  const double theta = startTheta(model, o);
+  const double h = timeStep(o);
   std::unique_ptr<TrajectoryWriter> writer;
   if (!o.out.empty()) writer = std::make_unique<TrajectoryWriter>(o.out, m);
   RunFiles files;  // no output replaces an input, another output or a special file
@@ -176,17 +259,8 @@ int run(int argc, char** argv) {
   const ControlSchedule schedule = ControlSchedule::load(o.controls, m);
   checkLimits(model, schedule);
   const std::vector<long> steps = stepsPerSegment(schedule, h);
-  long total_steps = 0;
-  for (long n : steps) total_steps += n;
-  if (writer && static_cast<std::size_t>(total_steps) > writer->maxSamples())
-    throw InputError("--out: the run takes " + std::to_string(total_steps) +
-                     " steps, a sample each; at most " + std::to_string(writer->maxSamples()) +
-                     " are written (shorten the run or take a larger --dt)");
   const long frame_stride = std::max(1L, std::lround(kSvgFrameTime / h));
-  if (!o.svg.empty() && total_steps / frame_stride > kMaxSvgFrames)
-    throw InputError("--svg: the run is " + numberText(total_steps * h) +
-                     " s long; an animation shows at most " +
-                     numberText(kMaxSvgFrames * kSvgFrameTime) + " s");
+  checkRunLength(steps, writer.get(), o, h, frame_stride);
   VecQ q0;
   try {
     q0 = restingConfiguration(model, pose, theta);
@@ -194,43 +268,9 @@ int run(int argc, char** argv) {
     throw InputError(std::string("--start: ") + e.what());
   }
 
-  SimulatorSettings settings;
-  settings.time_step = h;
-  const Simulator sim(model, settings);
-  SimulatorWorkspace ws(m);
-  SimState state(q0, VecQ::Zero(m + 4));
-  Summary summary;
-  double fell_at = -1.0;
-  InterruptFlag::install();              // SIGINT or SIGTERM: stop at the next step, write nothing
-  std::vector<TrajectorySample> frames;  // for --svg
-  std::vector<VecU> taus;
-  for (const auto& seg : schedule.segments()) taus.push_back(seg.tau);
-  HeldInputs inputs(steps, taus);
-  const long last = inputs.totalSteps() - 1;
-  const long total = rollout(
-      sim, state, inputs.totalSteps(), ws, inputs,
-      [&](const SimState& now, const StepReport& report, const VecU& tau, long n) {
-        if (!now.q.allFinite() || !now.v.allFinite())
-          throw std::runtime_error("the simulation diverged at t = " + numberText(now.t) + " s");
-        summary.add(report, now.t, m);
-        const TrajectorySample sample = trajectorySample(now, report, tau);
-        if (writer) writer->add(sample);
-        if (!o.svg.empty()) {
-          if (frames.empty()) {  // t = 0: the start at rest, with the first step's forces
-            frames.push_back(sample);
-            frames.back().t = 0.0, frames.back().q = q0, frames.back().v.setZero();
-          }
-          if ((n + 1) % frame_stride == 0 || n == last) frames.push_back(sample);
-        }
-        if (InterruptFlag::raised()) return false;
-        if (fellOff(now.q, q0)) {
-          fell_at = now.t;  // off the fingers: what follows is a free fall
-          return false;
-        }
-        return true;
-      });
+  Outcome out = simulate(model, q0, h, schedule, steps, frame_stride, !o.svg.empty(), writer.get());
   if (InterruptFlag::raised()) {  // the streamed temporary file goes with the writer
-    std::fprintf(stderr, "rbsf-simulate: stopped at t = %.6g s; nothing written\n", state.t);
+    std::fprintf(stderr, "rbsf-simulate: stopped at t = %.6g s; nothing written\n", out.state.t);
     return InterruptFlag::exitStatus();
   }
   // Everything is formatted before any file is written; each file is written atomically.
@@ -239,16 +279,16 @@ int run(int argc, char** argv) {
     SvgAnimationOptions a;
     a.title = "rbsf-simulate: " + o.cell;
     a.subtitle = "controls " + o.controls + ", start " + o.start;
-    svg = SvgAnimation(model, std::move(frames), a).document();
+    svg = SvgAnimation(model, std::move(out.frames), a).document();
   }
   if (writer) writer->commit();
   if (!o.svg.empty()) writeFileAtomically(o.svg, svg, "--svg");
-  printSummary(summary, state, model, h, o, total, writer ? writer->size() : 0);
-  if (fell_at >= 0.0)
+  printSummary(out.summary, out.state, model, h, o, out.total, writer ? writer->size() : 0);
+  if (out.fell_at >= 0.0)
     std::fprintf(stderr,
                  "rbsf-simulate: warning: the part fell off the fingers (%g m below its start "
                  "at t = %.6g s); the simulation stopped there\n",
-                 kFallDepth, fell_at);
+                 kFallDepth, out.fell_at);
   return 0;
 }
 

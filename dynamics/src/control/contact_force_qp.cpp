@@ -149,24 +149,71 @@ void ContactForceQp::assemble(const VecQ& q, const VecQ& v, const ContactTick& t
   B_.noalias() += MinvN_ * L_.leftCols(nu);
 }
 
-void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactTick& tick,
-                             const VecU& demand) {
-  const ContactRoles& roles = tick.roles;
-  const RbsfModel& model = model_;
-  const Cell& cell = model.cell();
-  const int m = model.numFingers(), n = model.configDim(), nu = model.controlDim();
-  const double mu_s = cell.friction.mu_static, mass = cell.object.mass;
+/// \brief Writes the QP's inequality rows one after the other, each on the forces lambda
+///        (through L_: lambda = L tau + constant + d/d f of the uncertain gravity) or on an
+///        acceleration (through B_ and a0_).
+class ContactForceQp::RowWriter {
+ public:
+  RowWriter(ContactForceQp& qp, const VecU& demand, double dmoment)
+      : o_(qp),
+        A_(qp.qp_.A),
+        b_(qp.qp_.b),
+        demand_(demand),
+        dmoment_(dmoment),
+        nu_(qp.model_.controlDim()) {}
+
+  /// Row c . lambda + constant >= -slack W (its violation, sigma or pi).
+  void force(const VecR& c, double constant, int slack) {
+    A_.row(r_).head(nu_).noalias() = c.transpose() * o_.L_.leftCols(nu_);
+    A_(r_, slack) = o_.weight_;
+    b_[r_] = -(c.dot(o_.L_.col(nu_)) + constant);
+    ++r_;
+  }
+  /// Row c . lambda + constant >= R + rho W (its margin beyond the robust one R).
+  void margin(const VecR& c, double constant) {
+    const Uncertainty& un = o_.model_.cell().uncertainty;
+    const double weight = o_.weight_;
+    double robust = std::abs(c.dot(o_.L_.col(nu_ + 2))) * weight * un.mass +
+                    std::abs(c.dot(o_.L_.col(nu_ + 3))) * dmoment_;
+    for (int j = 0; j < nu_; ++j)
+      robust += std::abs(c.dot(o_.L_.col(j))) * std::abs(demand_[j]) * un.actuator_gain;
+    robust = std::min(robust, o_.settings_.robust_cap * weight);
+    A_.row(r_).head(nu_).noalias() = c.transpose() * o_.L_.leftCols(nu_);
+    A_(r_, o_.layout_.margin()) = -weight;
+    b_[r_] = -(c.dot(o_.L_.col(nu_)) + constant) + robust;
+    ++r_;
+  }
+  /// Row on an acceleration w . dv/dt + constant >= 0 (times the part's mass), violable.
+  void motion(const VecQ& w, double constant) {
+    const double mass = o_.model_.cell().object.mass;
+    A_.row(r_).head(nu_).noalias() = mass * (w.transpose() * o_.B_);
+    A_(r_, o_.layout_.violation()) = o_.weight_;
+    b_[r_] = -mass * (w.dot(o_.a0_) + constant);
+    ++r_;
+  }
+  /// Row sign x_col >= bound.
+  void bound(int col, double sign, double bound) {
+    A_(r_, col) = sign;
+    b_[r_++] = bound;
+  }
+  int rows() const { return r_; }
+
+ private:
+  const ContactForceQp& o_;
+  QpMatIN& A_;
+  QpVecI& b_;
+  const VecU& demand_;
+  const double dmoment_;  // the worst first-order change of a moment [N m]
+  const int nu_;
+  int r_ = 0;
+};
+
+void ContactForceQp::setCost(const VecQ& q, const VecU& demand) {
+  const int n = model_.configDim(), nu = model_.controlDim();
   const ContactForceSettings& s = settings_;
   const QpLayout& lay = layout_;
-
-  // Rows: at most two per condition, three conditions per contact, the input box and the
-  // bounds of rho, sigma and pi.
-  qp_.resize(lay.size(), 0, 6 * m + 2 * nu + 4);
-  QpMatIN& A = qp_.A;
-  QpVecI& b = qp_.b;
-
-  // Cost: the motion's generalized-force error per part weight, then rho and sigma.
-  model.massMatrix(q, M_);
+  // The motion's generalized-force error per part weight, then rho and sigma.
+  model_.massMatrix(q, M_);
   SB_.resize(n, nu);
   for (int c = 0; c < n; ++c) {
     const bool moment = c == layout::kPhi || c == layout::kTheta;
@@ -181,90 +228,75 @@ void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactTick& ti
   qp_.g[lay.violation()] = s.violation_penalty;
   qp_.H(lay.shortfall(), lay.shortfall()) = 1.0;
   qp_.g[lay.shortfall()] = s.shortfall_penalty;
+}
+
+void ContactForceQp::contactRows(RowWriter& w, int i, const VecQ& v, const ContactTick& tick,
+                                 VecR& c) const {
+  const ContactForceSettings& s = settings_;
+  const double mu_s = model_.cell().friction.mu_static;
+  const ContactRole role = tick.roles[i];
+  const int sgn = slipSign(role);
+  if (role == ContactRole::kLifted) {
+    const double a = s.clearance_rate, gap = data_.contacts[i].gap;
+    w.motion(data_.G1.col(i),
+             data_.h_n[i] + 2.0 * a * data_.G1.col(i).dot(v) + a * a * (gap - s.clearance));
+    return;
+  }
+  if (normal_row_[i] < 0) return;
+  const bool relied = role != ContactRole::kFree && role != ContactRole::kUnplanned;
+  c.setZero();
+  c[normal_row_[i]] = 1.0;
+  w.force(c, relied ? -s.normal_floor * weight_ : 0.0, layout_.violation());
+  if (relied) w.margin(c, -s.normal_floor * weight_);
+  if (mode_[i] == ContactMode::kStick && sgn == 0) {
+    for (const double side : {1.0, -1.0}) {
+      c.setZero();
+      c[normal_row_[i]] = (relied ? s.friction_limit : 1.0) * mu_s;
+      c[tangent_row_[i]] = side;
+      w.force(c, 0.0, layout_.violation());
+      if (!relied) continue;
+      c[normal_row_[i]] = s.friction_use * mu_s;
+      w.margin(c, 0.0);
+    }
+  } else if (mode_[i] == ContactMode::kStick) {
+    c.setZero();
+    c[normal_row_[i]] = -s.breakaway * mu_s;
+    c[tangent_row_[i]] = -sgn;
+    w.force(c, -s.pull_margin * weight_, layout_.shortfall());
+  } else if (sgn != 0) {
+    const double slip = sgn * data_.T.col(i).dot(v);
+    const double floor = tick.slip_floor.size() > i ? tick.slip_floor[i] : s.slip_speed;
+    if (floor > 0.0)
+      w.motion(sgn * data_.T.col(i), sgn * data_.h_t[i] - s.slip_gain * (floor - slip));
+  }
+}
+
+void ContactForceQp::buildQp(const VecQ& q, const VecQ& v, const ContactTick& tick,
+                             const VecU& demand) {
+  const Cell& cell = model_.cell();
+  const int m = model_.numFingers(), nu = model_.controlDim();
+  const QpLayout& lay = layout_;
+  // Rows: at most two per condition, three conditions per contact, the input box and the
+  // bounds of rho, sigma and pi.
+  qp_.resize(lay.size(), 0, 6 * m + 2 * nu + 4);
+  setCost(q, demand);
 
   // The worst first-order change of a row from the cell's stated uncertainty.
-  const Uncertainty& un = cell.uncertainty;
   const double phi = q[layout::kPhi];
-  const double dmoment = weight_ * un.com * (std::abs(std::cos(phi)) + std::abs(std::sin(phi)));
-  int r = 0;
-  // Row c . lambda + constant >= -slack W (its violation, sigma or pi).
-  auto forceRow = [&](const VecR& c, double constant, int slack) {
-    A.row(r).head(nu).noalias() = c.transpose() * L_.leftCols(nu);
-    A(r, slack) = weight_;
-    b[r] = -(c.dot(L_.col(nu)) + constant);
-    ++r;
-  };
-  // Row c . lambda + constant >= R + rho W (its margin beyond the robust one).
-  auto marginRow = [&](const VecR& c, double constant) {
-    double robust = std::abs(c.dot(L_.col(nu + 2))) * weight_ * un.mass +
-                    std::abs(c.dot(L_.col(nu + 3))) * dmoment;
-    for (int j = 0; j < nu; ++j)
-      robust += std::abs(c.dot(L_.col(j))) * std::abs(demand[j]) * un.actuator_gain;
-    robust = std::min(robust, s.robust_cap * weight_);
-    A.row(r).head(nu).noalias() = c.transpose() * L_.leftCols(nu);
-    A(r, lay.margin()) = -weight_;
-    b[r] = -(c.dot(L_.col(nu)) + constant) + robust;
-    ++r;
-  };
-  // Row on an acceleration w . dv/dt + constant >= 0 (times the part's mass), violable.
-  auto motionRow = [&](const VecQ& w, double constant) {
-    A.row(r).head(nu).noalias() = mass * (w.transpose() * B_);
-    A(r, lay.violation()) = weight_;
-    b[r] = -mass * (w.dot(a0_) + constant);
-    ++r;
-  };
+  const double dmoment =
+      weight_ * cell.uncertainty.com * (std::abs(std::cos(phi)) + std::abs(std::sin(phi)));
+  RowWriter w(*this, demand, dmoment);
   VecR c(rows_);
-  for (int i = 0; i < m; ++i) {
-    const ContactRole role = roles[i];
-    const int sgn = slipSign(role);
-    if (role == ContactRole::kLifted) {
-      const double a = s.clearance_rate, gap = data_.contacts[i].gap;
-      motionRow(data_.G1.col(i),
-                data_.h_n[i] + 2.0 * a * data_.G1.col(i).dot(v) + a * a * (gap - s.clearance));
-      continue;
-    }
-    if (normal_row_[i] < 0) continue;
-    const bool relied = role != ContactRole::kFree && role != ContactRole::kUnplanned;
-    c.setZero();
-    c[normal_row_[i]] = 1.0;
-    forceRow(c, relied ? -s.normal_floor * weight_ : 0.0, lay.violation());
-    if (relied) marginRow(c, -s.normal_floor * weight_);
-    if (mode_[i] == ContactMode::kStick && sgn == 0) {
-      for (const double side : {1.0, -1.0}) {
-        c.setZero();
-        c[normal_row_[i]] = (relied ? s.friction_limit : 1.0) * mu_s;
-        c[tangent_row_[i]] = side;
-        forceRow(c, 0.0, lay.violation());
-        if (!relied) continue;
-        c[normal_row_[i]] = s.friction_use * mu_s;
-        marginRow(c, 0.0);
-      }
-    } else if (mode_[i] == ContactMode::kStick) {
-      c.setZero();
-      c[normal_row_[i]] = -s.breakaway * mu_s;
-      c[tangent_row_[i]] = -sgn;
-      forceRow(c, -s.pull_margin * weight_, lay.shortfall());
-    } else if (sgn != 0) {
-      const double slip = sgn * data_.T.col(i).dot(v);
-      const double floor = tick.slip_floor.size() > i ? tick.slip_floor[i] : s.slip_speed;
-      if (floor > 0.0)
-        motionRow(sgn * data_.T.col(i), sgn * data_.h_t[i] - s.slip_gain * (floor - slip));
-    }
-  }
+  for (int i = 0; i < m; ++i) contactRows(w, i, v, tick, c);
   for (int j = 0; j < nu; ++j) {
-    A(r, j) = 1.0;
-    b[r++] = -cell.inputLimit(j);
-    A(r, j) = -1.0;
-    b[r++] = -cell.inputLimit(j);
+    w.bound(j, 1.0, -cell.inputLimit(j));
+    w.bound(j, -1.0, -cell.inputLimit(j));
   }
-  A(r, lay.margin()) = -1.0;
-  b[r++] = -s.margin_cap;
-  A(r, lay.violation()) = 1.0;
-  b[r++] = 0.0;
-  A(r, lay.shortfall()) = 1.0;
-  b[r++] = 0.0;
+  w.bound(lay.margin(), -1.0, -settings_.margin_cap);
+  w.bound(lay.violation(), 1.0, 0.0);
+  w.bound(lay.shortfall(), 1.0, 0.0);
   // The rows left over stay 0 x >= -1: never active.
-  for (int j = r; j < qp_.numInequalities(); ++j) b[j] = -1.0;
+  for (int j = w.rows(); j < qp_.numInequalities(); ++j) qp_.b[j] = -1.0;
 }
 
 bool ContactForceQp::solve(const VecQ& q, const VecQ& v, const ContactTick& tick,

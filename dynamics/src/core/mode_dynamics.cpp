@@ -108,7 +108,21 @@ ModeLinearization ModeDynamics::linearize(const VecQ& q, const VecQ& v, const Ve
   data.xi_hint = hint;
   acceleration(q, v, tau, modes, data, vd, &lin.lambda);
   lin.vdot = vd;
+  stateJacobian(q, v, tau, modes, fd_step, hint, data, lin);
+  MatQR W;
+  const int k = inputResponse(q, v, modes, hint, data, W, lin);
+  if (k == 0) {
+    lin.tangent = Eigen::MatrixXd::Identity(2 * n, 2 * n);
+    return lin;
+  }
+  lin.tangent = tangentSpace(q, v, modes, fd_step, hint, W, k, data);
+  return lin;
+}
 
+void ModeDynamics::stateJacobian(const VecQ& q, const VecQ& v, const VecU& tau,
+                                 const ContactModes& modes, double fd_step, const VecC& hint,
+                                 ModelData& data, ModeLinearization& lin) const {
+  const int n = model_.configDim();
   lin.A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   lin.A.block(0, n, n, n).setIdentity();
   lin.Lx = Eigen::MatrixXd::Zero(lin.lambda.size(), 2 * n);
@@ -128,12 +142,15 @@ ModeLinearization ModeDynamics::linearize(const VecQ& q, const VecQ& v, const Ve
     lin.A.block(n, j, n, 1) = (plus - minus) / (2.0 * fd_step);
     if (lin.Lx.rows() > 0) lin.Lx.col(j) = (lambda_plus - lambda_minus) / (2.0 * fd_step);
   }
+}
 
-  // B and F exactly: v' = M^-1 (u - Q) + M^-1 N lambda with lambda affine in u.
+int ModeDynamics::inputResponse(const VecQ& q, const VecQ& v, const ContactModes& modes,
+                                const VecC& hint, ModelData& data, MatQR& W,
+                                ModeLinearization& lin) const {
+  const int n = model_.configDim(), nu = model_.controlDim();
   data.xi_hint = hint;
   model_.updateContacts(q, data);
   model_.velocityProducts(q, v, data);
-  MatQR W;
   const int k = constraintColumns(modes, data, W, nullptr);
   Eigen::MatrixXd Minv = Eigen::MatrixXd::Identity(n, n);
   model_.applyMassInverse(q, Minv);
@@ -157,12 +174,13 @@ ModeLinearization ModeDynamics::linearize(const VecQ& q, const VecQ& v, const Ve
   lin.F.bottomRows(n) = dvdf;
   lin.B = Eigen::MatrixXd::Zero(2 * n, nu);
   for (int j = 0; j < nu; ++j) lin.B.col(j) = lin.F.col(layout::inputToConfig(j));
+  return k;
+}
 
-  // Tangent space of the mode's state manifold.
-  if (k == 0) {
-    lin.tangent = Eigen::MatrixXd::Identity(2 * n, 2 * n);
-    return lin;
-  }
+Eigen::MatrixXd ModeDynamics::tangentSpace(const VecQ& q, const VecQ& v, const ContactModes& modes,
+                                           double fd_step, const VecC& hint, const MatQR& W, int k,
+                                           ModelData& data) const {
+  const int n = model_.configDim();
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * k, 2 * n);
   J.block(0, 0, k, n) = W.transpose();
   J.block(k, n, k, n) = W.transpose();
@@ -182,8 +200,7 @@ ModeLinearization ModeDynamics::linearize(const VecQ& q, const VecQ& v, const Ve
   const Eigen::VectorXd& s = svd.singularValues();
   int rank = 0;
   for (int i = 0; i < s.size(); ++i) rank += s[i] > 1e-8 * s[0];
-  lin.tangent = svd.matrixV().rightCols(2 * n - rank);
-  return lin;
+  return svd.matrixV().rightCols(2 * n - rank);
 }
 
 }  // namespace rbsf

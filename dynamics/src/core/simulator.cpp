@@ -226,84 +226,74 @@ void Simulator::correctDrift(const SimState& state, SimulatorWorkspace& ws) cons
     ws.dq.head<3>() -= ws.ec[a] * w.cwiseProduct(ws.W.col(ws.corr_row[a]).head<3>());
 }
 
-void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws, StepReport* report,
-                     const VecC* slip_tolerance) const {
-  const int m = model_.numFingers();
-  if (state.q.size() != m + 4 || state.v.size() != m + 4 || tau.size() != m + 1 || ws.data.m != m)
-    throw std::invalid_argument("Simulator::step: state, tau or workspace sized for another m");
-  const double h = settings_.time_step;
-  const FrictionParams& fr = model_.cell().friction;
-  ModelData& d = ws.data;
-  d.xi_hint = state.xi_hint;
-  model_.updateContacts(state.q, d);
-  if (settings_.curvature_terms) model_.velocityProducts(state.q, state.v, d);
-  model_.bias(state.q, state.v, d.bias);
-  model_.freeAcceleration(state.q, tau, d.bias, ws.acc);
-  ws.v_free = state.v + h * ws.acc;
-
-  const int nc = assembleRows(state, ws);
-  ContactImpulseSolver& s = ws.solver;
-  const int nu = s.numUnilateral();
+ContactMode Simulator::classify(const SimulatorWorkspace& ws, int r,
+                                const VecC* slip_tolerance) const {
   // Touching: in the closed set of the solution, or resting on the part without load
   // (gap at the end of the step, to second order, within the contact tolerance).
-  auto classify = [&](int r) {
-    const double end_gap = (ws.open_row[r] ? 0.0 : ws.gap[r]) + h * s.y[r];
-    if (!s.closed[r] && end_gap > settings_.contact_tolerance) return ContactMode::kSeparated;
-    const double slip =
-        slip_tolerance ? (*slip_tolerance)[ws.contact_finger[r]] : settings_.slip_tolerance;
-    return std::abs(s.y[nu + r]) > slip ? ContactMode::kSlide : ContactMode::kStick;
-  };
-  ImpulseSolvePath path = s.solve();
+  const ContactImpulseSolver& s = ws.solver;
+  const int nu = s.numUnilateral();
+  const double end_gap = (ws.open_row[r] ? 0.0 : ws.gap[r]) + settings_.time_step * s.y[r];
+  if (!s.closed[r] && end_gap > settings_.contact_tolerance) return ContactMode::kSeparated;
+  const double slip =
+      slip_tolerance ? (*slip_tolerance)[ws.contact_finger[r]] : settings_.slip_tolerance;
+  return std::abs(s.y[nu + r]) > slip ? ContactMode::kSlide : ContactMode::kStick;
+}
+
+bool Simulator::switchFriction(const SimState& state, SimulatorWorkspace& ws, int nc,
+                               const VecC* slip_tolerance) const {
+  const FrictionParams& fr = model_.cell().friction;
+  if (fr.mu_kinetic == fr.mu_static) return false;
+  ContactImpulseSolver& s = ws.solver;
+  const int nu = s.numUnilateral();
   bool resolve = false;
-  if (fr.mu_kinetic != fr.mu_static) {
-    for (int r = 0; r < nc; ++r) {
-      const int i = ws.contact_finger[r];
-      const ContactMode was = state.mode[i], now = classify(r);
-      if (now == ContactMode::kSlide && was != ContactMode::kSlide) {
-        s.mu[r] = fr.mu_kinetic;  // static friction broke: slide with mu_k from now on
-        resolve = true;
-      } else if (was == ContactMode::kSlide && now != ContactMode::kSeparated &&
-                 (now == ContactMode::kStick || s.y[nu + r] * state.slip[i] < 0.0)) {
-        s.mu[r] = fr.mu_static;  // the slip stopped or reversed within the step: may stick
-        resolve = true;
-      }
+  for (int r = 0; r < nc; ++r) {
+    const int i = ws.contact_finger[r];
+    const ContactMode was = state.mode[i], now = classify(ws, r, slip_tolerance);
+    if (now == ContactMode::kSlide && was != ContactMode::kSlide) {
+      s.mu[r] = fr.mu_kinetic;  // static friction broke: slide with mu_k from now on
+      resolve = true;
+    } else if (was == ContactMode::kSlide && now != ContactMode::kSeparated &&
+               (now == ContactMode::kStick || s.y[nu + r] * state.slip[i] < 0.0)) {
+      s.mu[r] = fr.mu_static;  // the slip stopped or reversed within the step: may stick
+      resolve = true;
     }
   }
-  if (resolve) {
-    const ImpulseSolvePath second = s.solve();
-    if (second > path) path = second;
-  }
+  return resolve;
+}
 
-  // Velocity, position, drift correction.
-  const double phi_start = state.q[kPhi];
+void Simulator::integrate(SimState& state, SimulatorWorkspace& ws) const {
+  const ContactImpulseSolver& s = ws.solver;
+  const double h = settings_.time_step;
   state.v = ws.v_free;
   if (s.numRows() > 0) state.v.noalias() += ws.MinvW * s.lambda;
   if (settings_.drift_correction && s.numRows() > 0) correctDrift(state, ws);
   state.q += h * state.v;
   if (settings_.drift_correction && s.numRows() > 0) state.q += ws.dq;
   state.t += h;
-  state.xi_hint = d.xi_hint;
+  state.xi_hint = ws.data.xi_hint;
+}
 
-  // Memory and report.
-  if (report) {
-    report->limit_force.setZero(model_.configDim());
-    report->path = path;
-    report->resolved = resolve;
-  }
+void Simulator::recordContacts(SimState& state, const SimulatorWorkspace& ws, int nc,
+                               double phi_start, StepReport* report,
+                               const VecC* slip_tolerance) const {
+  const int m = model_.numFingers();
+  const ContactImpulseSolver& s = ws.solver;
+  const int nu = s.numUnilateral();
+  const double h = settings_.time_step;
   std::array<int, kMaxFingers> row_of;
   row_of.fill(-1);
   for (int r = 0; r < nc; ++r) row_of[ws.contact_finger[r]] = r;
   int touching = 0, sticking = 0;
   for (int i = 0; i < m; ++i) {
     const int r = row_of[i];
-    const ContactMode mode = r < 0 ? ContactMode::kSeparated : classify(r);
+    const ContactMode mode = r < 0 ? ContactMode::kSeparated : classify(ws, r, slip_tolerance);
     const double slip = mode == ContactMode::kSeparated ? 0.0 : s.y[nu + r];
     // A contact held inside its cone (y_t = 0 exactly) is anchored at the material point
     // under its tip. One at the cone's edge creeps (by less than the slip tolerance, so it
     // still counts as sticking): correcting it back to an anchor would fight the friction
     // law, so it is re-anchored once it holds again.
     const bool held = r >= 0 && s.closed[r] && s.friction[r] == FrictionMode::kStick;
-    if (held && !state.anchored[i]) state.anchor[i] = rotate(-phi_start, d.contacts[i].lever);
+    if (held && !state.anchored[i]) state.anchor[i] = rotate(-phi_start, ws.data.contacts[i].lever);
     state.anchored[i] = held;
     state.mode[i] = mode;
     state.slip[i] = slip;
@@ -319,19 +309,8 @@ void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws, S
       // Rounding (under a nanonewton) reads 0; anything more negative is shown as it is.
       if (c.f_n < 0.0 && c.f_n > -1e-9) c.f_n = 0.0;
       c.f_t = r < 0 ? 0.0 : s.lambda[nu + r] / h;
-      c.gap = d.contacts[i].gap;
+      c.gap = ws.data.contacts[i].gap;
       c.slip = slip;
-    }
-  }
-  state.limit_closed.fill(false);
-  for (int j = 0; j < s.numUnilateral() - nc; ++j) {
-    state.limit_closed[ws.limit_index[j]] = s.closed[nc + j];
-    if (report) {
-      int index;
-      double lo, hi;
-      limitOf(model_.cell(), ws.limit_index[j] / 2, index, lo, hi);
-      report->limit_force[index] +=
-          (ws.limit_index[j] % 2 == 0 ? 1.0 : -1.0) * s.lambda[nc + j] / h;
     }
   }
   if (report) {
@@ -342,6 +321,56 @@ void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws, S
                     : sticking == 1 ? Phase::kP
                                     : Phase::kU;
   }
+}
+
+void Simulator::recordLimits(SimState& state, const SimulatorWorkspace& ws, int nc,
+                             StepReport* report) const {
+  const ContactImpulseSolver& s = ws.solver;
+  state.limit_closed.fill(false);
+  for (int j = 0; j < s.numUnilateral() - nc; ++j) {
+    state.limit_closed[ws.limit_index[j]] = s.closed[nc + j];
+    if (report) {
+      int index;
+      double lo, hi;
+      limitOf(model_.cell(), ws.limit_index[j] / 2, index, lo, hi);
+      report->limit_force[index] +=
+          (ws.limit_index[j] % 2 == 0 ? 1.0 : -1.0) * s.lambda[nc + j] / settings_.time_step;
+    }
+  }
+}
+
+void Simulator::step(SimState& state, const VecU& tau, SimulatorWorkspace& ws, StepReport* report,
+                     const VecC* slip_tolerance) const {
+  const int m = model_.numFingers();
+  if (state.q.size() != m + 4 || state.v.size() != m + 4 || tau.size() != m + 1 || ws.data.m != m)
+    throw std::invalid_argument("Simulator::step: state, tau or workspace sized for another m");
+  const double h = settings_.time_step;
+  ModelData& d = ws.data;
+  d.xi_hint = state.xi_hint;
+  model_.updateContacts(state.q, d);
+  if (settings_.curvature_terms) model_.velocityProducts(state.q, state.v, d);
+  model_.bias(state.q, state.v, d.bias);
+  model_.freeAcceleration(state.q, tau, d.bias, ws.acc);
+  ws.v_free = state.v + h * ws.acc;
+
+  const int nc = assembleRows(state, ws);
+  ContactImpulseSolver& s = ws.solver;
+  ImpulseSolvePath path = s.solve();
+  const bool resolve = switchFriction(state, ws, nc, slip_tolerance);
+  if (resolve) {
+    const ImpulseSolvePath second = s.solve();
+    if (second > path) path = second;
+  }
+
+  const double phi_start = state.q[kPhi];
+  integrate(state, ws);
+  if (report) {
+    report->limit_force.setZero(model_.configDim());
+    report->path = path;
+    report->resolved = resolve;
+  }
+  recordContacts(state, ws, nc, phi_start, report, slip_tolerance);
+  recordLimits(state, ws, nc, report);
 }
 
 }  // namespace rbsf

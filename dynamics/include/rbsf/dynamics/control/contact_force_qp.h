@@ -164,6 +164,11 @@ class ContactForceQp {
   void assemble(const VecQ& q, const VecQ& v, const ContactTick& tick);
   /// \brief The QP's cost and rows for `demand`.
   void buildQp(const VecQ& q, const VecQ& v, const ContactTick& tick, const VecU& demand);
+  class RowWriter;  ///< the QP's rows in order (contact_force_qp.cpp)
+  /// \brief The QP's cost: the motion's error from `demand`, then rho, sigma and pi.
+  void setCost(const VecQ& q, const VecU& demand);
+  /// \brief The rows of contact `i` in its role and mode; `c` is a row's work vector.
+  void contactRows(RowWriter& w, int i, const VecQ& v, const ContactTick& tick, VecR& c) const;
 
   using MatL = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxFingers + 5>;
 

@@ -85,6 +85,20 @@ class ModeDynamics {
   /// \brief The force columns N of the file comment for the constraint columns W.
   void forceColumns(const ContactModes& modes, const ModelData& data, const VecQ& v, const MatQR& W,
                     MatQR& N) const;
+  /// \brief lin.A (central differences of (v, v') in (q, v), step fd_step) and lin.Lx (of
+  ///        the mode's forces), every evaluation's closest points from `hint`.
+  void stateJacobian(const VecQ& q, const VecQ& v, const VecU& tau, const ContactModes& modes,
+                     double fd_step, const VecC& hint, ModelData& data,
+                     ModeLinearization& lin) const;
+  /// \brief lin.F, lin.B and lin.Lu exactly (v' = M^-1 (u - Q) + M^-1 N lambda, lambda
+  ///        affine in u) and the mode's constraint columns W; returns their number k.
+  int inputResponse(const VecQ& q, const VecQ& v, const ContactModes& modes, const VecC& hint,
+                    ModelData& data, MatQR& W, ModeLinearization& lin) const;
+  /// \brief An orthonormal basis of the tangent space of the mode's state manifold: the
+  ///        null space of d(W^T q, W^T v)/d(q, v) (k > 0 constraint columns W).
+  Eigen::MatrixXd tangentSpace(const VecQ& q, const VecQ& v, const ContactModes& modes,
+                               double fd_step, const VecC& hint, const MatQR& W, int k,
+                               ModelData& data) const;
 
   const RbsfModel& model_;
   double regularization_;

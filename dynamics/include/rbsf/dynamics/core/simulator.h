@@ -172,6 +172,20 @@ class Simulator {
  private:
   int assembleRows(const SimState& state, SimulatorWorkspace& ws) const;
   void correctDrift(const SimState& state, SimulatorWorkspace& ws) const;
+  /// \brief The mode of contact row `r` after the solve: separated, sliding or sticking.
+  ContactMode classify(const SimulatorWorkspace& ws, int r, const VecC* slip_tolerance) const;
+  /// \brief Friction memory: mu_k where static friction broke, mu_s where a slide stopped or
+  ///        reversed; true when a row's mu changed (the step is solved again).
+  bool switchFriction(const SimState& state, SimulatorWorkspace& ws, int nc,
+                      const VecC* slip_tolerance) const;
+  /// \brief The new velocity, position (with the drift correction) and time.
+  void integrate(SimState& state, SimulatorWorkspace& ws) const;
+  /// \brief The contacts' memory (mode, slip, anchors) in `state` and their report.
+  void recordContacts(SimState& state, const SimulatorWorkspace& ws, int nc, double phi_start,
+                      StepReport* report, const VecC* slip_tolerance) const;
+  /// \brief The closed joint limits in `state` and their forces in the report.
+  void recordLimits(SimState& state, const SimulatorWorkspace& ws, int nc,
+                    StepReport* report) const;
 
   const RbsfModel& model_;
   SimulatorSettings settings_;

@@ -49,6 +49,17 @@ class SvgTimePlot {
   std::string render(int width, int height) const;
 
  private:
+  struct Frame;  ///< the plot's area and ranges (svg_time_plot.cpp)
+  /// \brief The phases' background windows.
+  void phaseWindows(const Frame& f, std::string& s) const;
+  /// \brief The reference lines and bands with their labels.
+  void referenceLines(const Frame& f, std::string& s) const;
+  /// \brief Grid, ticks and labels of both axes, the frame and the title.
+  void axes(const Frame& f, const std::vector<double>& value_ticks, int height,
+            std::string& s) const;
+  /// \brief The legend and each series' line.
+  void seriesLines(const Frame& f, std::string& s) const;
+
   std::string title_, unit_;
   std::vector<double> times_;
   std::vector<Phase> phases_;
