@@ -150,7 +150,7 @@ int run(int argc, char** argv) {
   request.optimizer.knots = static_cast<int>(parseInteger(knots_text, "--knots", 2, 2000));
 
   FeedbackSettings feedback;
-  feedback.settle_time = settle;
+  feedback.timing.settle_time = settle;
   controller::ReorientationController ctl(cell, feedback);
   const RbsfModel& model = ctl.model();
   const int m = model.numFingers();

@@ -294,7 +294,7 @@ Certificate certify(const RbsfModel& model, const Plan& plan, const CertificateS
   c.batch = c.sequential ? s.batch : 0;
   c.max_trials = c.sequential ? s.max_trials : 0;
   c.seed = s.seed;
-  c.settle_time = s.feedback.settle_time;
+  c.settle_time = s.feedback.timing.settle_time;
   c.position_tolerance = s.trial.position_tolerance;
   c.angle_tolerance = s.trial.angle_tolerance;
   c.rest_speed = model.cell().motion_limits.rest_speed;

@@ -170,7 +170,7 @@ TEST_F(NoAllocation, ReferenceSamplingAndTheControlLaw) {
     Sensing sensing;
     sensing.part_pose.present = part;
     FeedbackSettings fs;
-    fs.settle_time = 0.2;
+    fs.timing.settle_time = 0.2;
     const FeedbackSchedule schedule(model, ref, sensing, SimulatorSettings{}, fs);
     ControlLaw law(schedule);
     ReferenceSample sample;

@@ -149,7 +149,7 @@ TEST(ExecutionRecipe, RunsAPlanFileAsTheCertificatesTrialWithoutDraws) {
       plan::traceTrial(model, plan, plan::CertificateSettings{}, -1, trace);
   ASSERT_TRUE(nominal.success) << nominal.failure;
   SimulatedCell cell(model, plan);
-  const double settle = plan::CertificateSettings{}.feedback.settle_time;
+  const double settle = plan::CertificateSettings{}.feedback.timing.settle_time;
   ASSERT_EQ(runPlanFile(kDefaultCell, planFile(), cell, settle), 0);
   ASSERT_EQ(static_cast<double>(trace.size()),
             std::round((plan.duration() + settle) / plan.simulator.time_step));

@@ -55,7 +55,7 @@ TEST(FeedbackSchedule, WithoutPartSensingTheGainIsTheJointServo) {
   const Eigen::MatrixXd& K = schedule.gain(0);
   const int n = model.configDim();
   const Cell& c = model.cell();
-  const double w = fs.natural_frequency, z = fs.damping_ratio;
+  const double w = fs.servo.natural_frequency, z = fs.servo.damping_ratio;
   for (int j = 0; j < model.controlDim(); ++j) {
     const int col = layout::inputToConfig(j);
     const double inertia = j == 0 ? [&] {

@@ -72,7 +72,7 @@ inline plan::Plan twoTipsPlan(const RbsfModel& model, double amplitude = M_PI / 
   }
   wanted.addInputPiece(0.0, duration, hold, VecU(), Phase::kU);
   FeedbackSettings fs;
-  fs.settle_time = 0.0;
+  fs.timing.settle_time = 0.0;
   const FeedbackSchedule schedule(model, wanted, Sensing{}, SimulatorSettings{}, fs);
   ControlLaw law(schedule);
   const Simulator simulator(model);

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -185,6 +186,27 @@ TEST_F(PlannerTest, SameSeedSamePlan) {
     EXPECT_TRUE(a.segments[k].tau == b.segments[k].tau) << "segment " << k;
   }
   EXPECT_EQ(a.propagations, b.propagations);
+}
+
+TEST_F(PlannerTest, TheCallsCancelStopsTheSearchAndALoweredOneChangesNothing) {
+  // The run context, not the settings: with the flag raised before the search it ends at
+  // its first check, without the plan the same seed finds; with the flag lowered the search
+  // is the one without a context, propagation for propagation.
+  Plan plan;
+  ReorientationPlanner free_run(model, testSettings(12));
+  ASSERT_TRUE(free_run.solve(smallProblem(), plan));
+  ASSERT_EQ(plan.status, plan::PlanStatus::kExact);
+  const std::atomic<bool> raised{true}, lowered{false};
+  ReorientationPlanner stopped(model, testSettings(12));
+  Plan none;
+  stopped.solve(smallProblem(), none, SearchContext{&raised, nullptr});
+  EXPECT_LT(stopped.propagations(), free_run.propagations());
+  EXPECT_NE(none.status, plan::PlanStatus::kExact);
+  ReorientationPlanner quiet(model, testSettings(12));
+  Plan same;
+  ASSERT_TRUE(quiet.solve(smallProblem(), same, SearchContext{&lowered, nullptr}));
+  EXPECT_EQ(quiet.propagations(), free_run.propagations());
+  EXPECT_EQ(same.segments.size(), plan.segments.size());
 }
 
 TEST_F(PlannerTest, PlanFileRoundTrips) {

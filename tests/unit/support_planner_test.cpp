@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <set>
 #include <vector>
@@ -410,6 +411,25 @@ TEST(SupportPlanner, PathsWhoseRunsMissTheGoalAreBlockedAndTheLongestRunningIsKe
   SupportPlanner defaults(model, SupportPlannerSettings{});
   ASSERT_TRUE(defaults.solve(problem, plan)) << defaults.message();
   EXPECT_EQ(defaults.pathsRun(), 1);
+  EXPECT_EQ(plan.status, plan::PlanStatus::kExact);
+}
+
+TEST(SupportPlanner, ARaisedCancelEndsTheSolveBeforeAnySearch) {
+  // The call's cancel flag (not a setting): raised, no search expands a node and no plan is
+  // made; the same planner with the flag lowered finds the 15 degree plan (the test above).
+  const RbsfModel& model = defaultModel();
+  Problem problem;
+  problem.start = kStart;
+  problem.goal = kTurn15;
+  SupportPlanner planner(model, SupportPlannerSettings{});
+  const std::atomic<bool> raised{true}, lowered{false};
+  Plan plan;
+  EXPECT_FALSE(planner.solve(problem, plan, &raised));
+  EXPECT_EQ(planner.message(), "cancelled");
+  EXPECT_EQ(planner.expansions(), 0);
+  EXPECT_EQ(planner.pathsRun(), 0);
+  EXPECT_TRUE(plan.segments.empty());
+  ASSERT_TRUE(planner.solve(problem, plan, &lowered)) << planner.message();
   EXPECT_EQ(plan.status, plan::PlanStatus::kExact);
 }
 

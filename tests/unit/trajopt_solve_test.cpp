@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -182,6 +183,20 @@ TEST(TrajoptFailure, IterationLimitKeepsTheInputPlan) {
   EXPECT_EQ(out.plan.segments.size(), test::shortPlan().segments.size());
   EXPECT_EQ(out.plan.samples.size(), test::shortPlan().samples.size());
   EXPECT_TRUE(out.plan.segments.front().tau_end.size() == 0);
+}
+
+TEST(TrajoptFailure, ARaisedCancelStopsTheSolveAndKeepsTheInputPlan) {
+  // The call's cancel flag (not a setting): raised before the solve, Ipopt stops at its
+  // first iteration and the planner's plan is returned; the fixture above, uncancelled,
+  // converges with the same settings.
+  const PlanOptimizer opt(test::defaultModel(), testSettings());
+  const std::atomic<bool> raised{true};
+  const OptimizedPlan out = opt.optimize(test::shortPlan(), &raised);
+  EXPECT_FALSE(out.success);
+  EXPECT_EQ(out.summary.status, plan::SolverStatus::kUserRequestedStop);
+  EXPECT_LE(out.summary.iterations, 1);
+  EXPECT_EQ(out.plan.segments.size(), test::shortPlan().segments.size());
+  EXPECT_EQ(out.plan.samples.size(), test::shortPlan().samples.size());
 }
 
 TEST(TrajoptOptions, AnIpoptOptFileInTheWorkingDirectoryIsIgnored) {

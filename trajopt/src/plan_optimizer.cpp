@@ -151,7 +151,8 @@ PlanOptimizer::PlanOptimizer(const RbsfModel& model, OptimizerSettings settings)
   require(s.print_level >= 0 && s.print_level <= 12, "print_level must be in [0, 12]");
 }
 
-OptimizedPlan PlanOptimizer::optimize(const plan::Plan& plan) const {
+OptimizedPlan PlanOptimizer::optimize(const plan::Plan& plan,
+                                      const std::atomic<bool>* cancel) const {
   checkPlan(model_, plan);
   OptimizedPlan out;
   out.plan = plan;
@@ -177,8 +178,8 @@ OptimizedPlan PlanOptimizer::optimize(const plan::Plan& plan) const {
   // "": no options file. Ipopt would otherwise read ./ipopt.opt, and a stray file in the
   // caller's working directory would silently change every plan optimised from there.
   Ipopt::ApplicationReturnStatus status = app->Initialize("");
-  Ipopt::SmartPtr<IpoptAdapter> nlp = new IpoptAdapter(problem, settings_.exact_hessian,
-                                                       settings_.cancel, settings_.max_solve_time);
+  Ipopt::SmartPtr<IpoptAdapter> nlp =
+      new IpoptAdapter(problem, settings_.exact_hessian, cancel, settings_.max_solve_time);
   if (status == Ipopt::Solve_Succeeded) status = app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
   summary.solve_time = elapsed();
   summary.status =

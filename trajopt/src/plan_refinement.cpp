@@ -28,9 +28,10 @@ bool finitePlan(const plan::Plan& p) {
 }
 
 /// One solve: its plan when it succeeded and is finite, and its summary.
-RefinementCandidate solve(const PlanOptimizer& optimizer, const plan::Plan& plan) {
+RefinementCandidate solve(const PlanOptimizer& optimizer, const plan::Plan& plan,
+                          const std::atomic<bool>* cancel) {
   RefinementCandidate a;
-  OptimizedPlan opt = optimizer.optimize(plan);
+  OptimizedPlan opt = optimizer.optimize(plan, cancel);
   a.summary = opt.summary;
   a.summary.ran = true;
   a.converged = opt.success;
@@ -72,10 +73,6 @@ OptimizerSettings supportOptimizerSettings(OptimizerSettings base, const plan::P
 PlanRefiner::PlanRefiner(const RbsfModel& model, OptimizerSettings settings, RefineSettings refine)
     : optimizer_(model, std::move(settings)), refine_(refine) {}
 
-bool PlanRefiner::cancelled() const {
-  return settings().cancel != nullptr && settings().cancel->load();
-}
-
 OptimizerSettings PlanRefiner::settingsFor(const plan::PlanMargins& margins, int k) const {
   OptimizerSettings s =
       margins.support ? supportOptimizerSettings(settings(), margins, refine_.support) : settings();
@@ -94,9 +91,9 @@ int PlanRefiner::candidates(const plan::PlanMargins& margins) const {
 }
 
 RefinementCandidate PlanRefiner::candidate(const plan::Plan& plan, const plan::PlanMargins& margins,
-                                           int k) const {
+                                           int k, const std::atomic<bool>* cancel) const {
   const OptimizerSettings s = settingsFor(margins, k);
-  RefinementCandidate c = solve(PlanOptimizer(model(), s), plan);
+  RefinementCandidate c = solve(PlanOptimizer(model(), s), plan, cancel);
   c.label = k == 0 ? "first solve" : "retry with min_slip_rate " + std::to_string(s.min_slip_rate);
   return c;
 }

@@ -44,7 +44,7 @@ ControlLaw::ControlLaw(const FeedbackSchedule& schedule)
     // The tracking index, capped: noise-free encoders would give the filter's limit
     // alpha = 1, beta = 2, which is marginally stable and rings.
     const double lambda =
-        std::min(schedule.settings().servo_acceleration * h * h / noise, kMaxTrackingIndex);
+        std::min(schedule.settings().servo.servo_acceleration * h * h / noise, kMaxTrackingIndex);
     const double r = (4.0 + lambda - std::sqrt(8.0 * lambda + lambda * lambda)) / 4.0;
     alpha_[j] = 1.0 - r * r;
     beta_[j] = 2.0 * (2.0 - alpha_[j]) - 4.0 * std::sqrt(1.0 - alpha_[j]);
@@ -277,8 +277,8 @@ bool ControlLaw::compute(double t, const VecU& joints, VecU& tau) {
   if (!clamped) {
     const FeedbackSettings& fs = schedule_.settings();
     for (int c = 0; c < layout::kObjectDim; ++c) {
-      const double bound =
-          fs.integral_limit * fs.integral_time * (c == layout::kPhi ? fs.angle : fs.position);
+      const double bound = fs.lqr.integral_limit * fs.lqr.integral_time *
+                           (c == layout::kPhi ? fs.lqr.angle : fs.lqr.position);
       xi_[c] = std::clamp(xi_[c] + h * e_[c], -bound, bound);
     }
   }
@@ -307,7 +307,7 @@ void ControlLaw::blendStart(double t, VecX& e) {
     start_time_ = t;
     start_set_ = true;
   }
-  const double T = schedule_.settings().start_blend;
+  const double T = schedule_.settings().timing.start_blend;
   if (T > 0.0) e.noalias() -= std::exp(-(t - start_time_) / T) * start_error_;
 }
 
@@ -352,8 +352,8 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
     const double slip = sgn * data.T.col(i).dot(v_est_);
     // On an exact state the simulator's own tolerance tells; an estimate needs a slip it can
     // tell from its noise.
-    const double seen =
-        exact ? 10.0 * schedule_.simulator().settings().slip_tolerance : fs.estimator_slip_speed;
+    const double seen = exact ? 10.0 * schedule_.simulator().settings().slip_tolerance
+                              : fs.contacts.estimator_slip_speed;
     if (exact || schedule_.partFeedback()) {
       // Slipping either way: the prediction takes its kinetic friction against the slip.
       const bool slipping =
@@ -366,7 +366,7 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
       tick.loose[i] = slipping || (tick.loose[i] && !stuck);
     } else {
       // Without the part's pose the slip cannot be seen: loose once pulled long enough.
-      tick.loose[i] = tick.loose[i] || pulled_[i] >= fs.breakaway_time;
+      tick.loose[i] = tick.loose[i] || pulled_[i] >= fs.contacts.breakaway_time;
     }
     if (!tick.loose[i]) pulled_[i] += dt;
     // The floor holds where the reference itself slides this way at least that fast.

@@ -32,6 +32,37 @@ VectorXd stateDiagonal(int m, double pos, double ang, double base, double stroke
 
 void symmetrize(MatrixXd& S) { S = 0.5 * (S + S.transpose()).eval(); }
 
+/// \brief The estimator's simulator settings (FeedbackSchedule::estimatorSimulator()).
+SimulatorSettings estimatorSettings(const RbsfModel& model, const SimulatorSettings& simulator,
+                                    const Sensing& sensing, const FeedbackSettings& settings) {
+  SimulatorSettings e = simulator;
+  // Without friction there is no stick to lose, and a slow slide must stay a slide.
+  if (model.cell().friction.mu_static > 0.0)
+    e.slip_tolerance = std::max(e.slip_tolerance, settings.contacts.estimator_slip_speed);
+  e.contact_tolerance = std::max(e.contact_tolerance, 10.0 * sensing.joints.stroke_noise);
+  e.activation_distance = std::max(e.activation_distance, 2.0 * e.contact_tolerance);
+  e.drift_moves_part_only = true;
+  return e;
+}
+
+/// \brief Every weight, period and noise positive; the hold, the horizon's tail, the damping
+///        and the integral action not negative. \throws InputError.
+void checkSettings(const FeedbackSettings& s) {
+  for (double x :
+       {s.timing.gain_period, s.lqr.position, s.lqr.angle, s.lqr.base_angle, s.lqr.stroke,
+        s.lqr.speed, s.lqr.angular_speed, s.lqr.base_rate, s.lqr.stroke_speed, s.lqr.input_fraction,
+        s.servo.natural_frequency, s.noise.part_acceleration, s.noise.part_angular_acceleration,
+        s.noise.joint_acceleration, s.servo.servo_acceleration, s.noise.drift_speed,
+        s.contacts.touch_gap})
+    if (!(std::isfinite(x) && x > 0.0))
+      throw InputError("feedback settings: every weight, period and noise must be positive");
+  if (!(s.timing.settle_time >= 0.0 && s.timing.horizon_tail >= 0.0 &&
+        s.servo.damping_ratio >= 0.0 && s.lqr.integral_time >= 0.0 && s.lqr.integral_limit >= 0.0))
+    throw InputError(
+        "feedback settings: settle_time, horizon_tail, damping_ratio, integral_time and "
+        "integral_limit must be >= 0");
+}
+
 }  // namespace
 
 FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory trajectory,
@@ -39,18 +70,7 @@ FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory t
                                    const FeedbackSettings& settings)
     : model_(model),
       simulator_(model, simulator),
-      estimator_(
-          model,
-          [&] {
-            SimulatorSettings e = simulator;
-            // Without friction there is no stick to lose, and a slow slide must stay a slide.
-            if (model.cell().friction.mu_static > 0.0)
-              e.slip_tolerance = std::max(e.slip_tolerance, settings.estimator_slip_speed);
-            e.contact_tolerance = std::max(e.contact_tolerance, 10.0 * sensing.joints.stroke_noise);
-            e.activation_distance = std::max(e.activation_distance, 2.0 * e.contact_tolerance);
-            e.drift_moves_part_only = true;
-            return e;
-          }()),
+      estimator_(model, estimatorSettings(model, simulator, sensing, settings)),
       reference_(std::move(trajectory)),
       sensing_(sensing),
       h_(simulator.time_step),
@@ -58,19 +78,8 @@ FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory t
   if (!reference_.ready()) throw InputError("feedback schedule: the reference is empty");
   if (!(std::isfinite(h_) && h_ > 0.0))
     throw InputError("feedback schedule: the control period must be positive");
-  const FeedbackSettings& s = settings_;
-  for (double x : {s.gain_period, s.position, s.angle, s.base_angle, s.stroke, s.speed,
-                   s.angular_speed, s.base_rate, s.stroke_speed, s.input_fraction,
-                   s.natural_frequency, s.part_acceleration, s.part_angular_acceleration,
-                   s.joint_acceleration, s.servo_acceleration, s.drift_speed, s.touch_gap})
-    if (!(std::isfinite(x) && x > 0.0))
-      throw InputError("feedback settings: every weight, period and noise must be positive");
-  if (!(s.settle_time >= 0.0 && s.horizon_tail >= 0.0 && s.damping_ratio >= 0.0 &&
-        s.integral_time >= 0.0 && s.integral_limit >= 0.0))
-    throw InputError(
-        "feedback settings: settle_time, horizon_tail, damping_ratio, integral_time and "
-        "integral_limit must be >= 0");
-  steps_per_knot_ = std::max(1, static_cast<int>(std::lround(s.gain_period / h_)));
+  checkSettings(settings_);
+  steps_per_knot_ = std::max(1, static_cast<int>(std::lround(settings_.timing.gain_period / h_)));
   t0_ = reference_.startTime();
 
   ReferenceSample end;
@@ -143,7 +152,7 @@ ContactModes FeedbackSchedule::plannedModes(double t, SimulatorWorkspace& ws,
   VecC slip = VecC::Zero(m);
   for (int i = 0; i < m; ++i) {
     slip[i] = data.T.col(i).dot(a.v);
-    if (!(data.contacts[i].gap <= settings_.touch_gap)) continue;
+    if (!(data.contacts[i].gap <= settings_.contacts.touch_gap)) continue;
     const bool slides = std::abs(slip[i]) > sim.slip_tolerance;
     state.mode[i] = slides ? ContactMode::kSlide : ContactMode::kStick;
     state.slip[i] = slip[i];
@@ -156,7 +165,7 @@ ContactModes FeedbackSchedule::plannedModes(double t, SimulatorWorkspace& ws,
   // The roles: the plan's own, else what that step did (a contact it presses sticks or
   // slides the way the reference slips it).
   const double min_force =
-      settings_.min_normal_force * model_.cell().object.mass * model_.cell().gravity;
+      settings_.contacts.min_normal_force * model_.cell().object.mass * model_.cell().gravity;
   roles = a.roles;
   if (!planned(roles)) {
     roles.fill(ContactRole::kUnplanned);
@@ -188,21 +197,23 @@ int FeedbackSchedule::knotAt(double t) const {
 void FeedbackSchedule::computeLqr(const std::vector<MatrixXd>& tangent) {
   const FeedbackSettings& s = settings_;
   const int m = model_.numFingers(), nu = model_.controlDim();
-  const VectorXd tol = stateDiagonal(m, s.position, s.angle, s.base_angle, s.stroke, s.speed,
-                                     s.angular_speed, s.base_rate, s.stroke_speed);
+  const VectorXd tol =
+      stateDiagonal(m, s.lqr.position, s.lqr.angle, s.lqr.base_angle, s.lqr.stroke, s.lqr.speed,
+                    s.lqr.angular_speed, s.lqr.base_rate, s.lqr.stroke_speed);
   const MatrixXd Q = tol.cwiseInverse().cwiseAbs2().asDiagonal();
   VectorXd rdiag(nu);
   rdiag[layout::kTauTheta] = model_.cell().base.torque_limit;
   for (int i = 0; i < m; ++i) rdiag[layout::fingerForce(i)] = model_.cell().fingers[i].force_limit;
-  const MatrixXd R = (s.input_fraction * rdiag).cwiseInverse().cwiseAbs2().asDiagonal();
+  const MatrixXd R = (s.lqr.input_fraction * rdiag).cwiseInverse().cwiseAbs2().asDiagonal();
 
   const int knots = numKnots(), n = model_.configDim();
   // Integral of the part's pose error (x, y, phi): three states appended to z.
-  const bool integral = s.integral_time > 0.0;
+  const bool integral = s.lqr.integral_time > 0.0;
   const int ni = integral ? layout::kObjectDim : 0;
   VectorXd qi(ni);
   for (int c = 0; c < ni; ++c)
-    qi[c] = 1.0 / std::pow((c == layout::kPhi ? s.angle : s.position) * s.integral_time, 2);
+    qi[c] =
+        1.0 / std::pow((c == layout::kPhi ? s.lqr.angle : s.lqr.position) * s.lqr.integral_time, 2);
   MatrixXd Hp = MatrixXd::Zero(ni, 2 * n);
   for (int c = 0; c < ni; ++c) Hp(c, c) = 1.0;
   K_.assign(knots, MatrixXd());
@@ -227,7 +238,7 @@ void FeedbackSchedule::computeLqr(const std::vector<MatrixXd>& tangent) {
     MatrixXd K;
     if (k == knots - 1) {
       S = Qz;
-      for (long j = std::lround(s.horizon_tail / h_); j > 0; --j) riccati(Az, Bz, Qz, K);
+      for (long j = std::lround(s.timing.horizon_tail / h_); j > 0; --j) riccati(Az, Bz, Qz, K);
     } else {
       // The manifold changes with the mode: carry the cost-to-go into this knot's basis.
       const int r1 = static_cast<int>(tangent[k + 1].cols());
@@ -256,7 +267,7 @@ void FeedbackSchedule::computePd() {
       M(layout::kTheta, layout::kTheta) + c.object.inertia + c.object.mass * r2;
   for (int i = 0; i < m; ++i)
     inertia[layout::fingerForce(i)] = c.fingers[i].mass + c.object.mass / m;
-  const double w = settings_.natural_frequency, z = settings_.damping_ratio;
+  const double w = settings_.servo.natural_frequency, z = settings_.servo.damping_ratio;
   MatrixXd K = MatrixXd::Zero(nu, 2 * n);
   for (int j = 0; j < nu; ++j) {
     const int k = layout::inputToConfig(j);
@@ -275,15 +286,15 @@ void FeedbackSchedule::computeKalman() {
   // Process noise per step: velocity white noise on positions (drift), and generalized-force
   // noise through the mode's constraints on velocities (F), sized as the accelerations it
   // would give each coordinate alone (M_kk x acceleration).
-  const VectorXd drift = VectorXd::Constant(n, s.drift_speed);
+  const VectorXd drift = VectorXd::Constant(n, s.noise.drift_speed);
   MatQQ M;
   ReferenceSample start;
   reference_.sample(t0_, start);
   model_.massMatrix(start.q, M);
   VectorXd force(n);
-  force[layout::kX] = force[layout::kY] = M(layout::kX, layout::kX) * s.part_acceleration;
-  force[layout::kPhi] = M(layout::kPhi, layout::kPhi) * s.part_angular_acceleration;
-  for (int j = layout::kTheta; j < n; ++j) force[j] = M(j, j) * s.joint_acceleration;
+  force[layout::kX] = force[layout::kY] = M(layout::kX, layout::kX) * s.noise.part_acceleration;
+  force[layout::kPhi] = M(layout::kPhi, layout::kPhi) * s.noise.part_angular_acceleration;
+  for (int j = layout::kTheta; j < n; ++j) force[j] = M(j, j) * s.noise.joint_acceleration;
   const MatrixXd Sf = force.cwiseAbs2().asDiagonal();
   // Joint measurements: q[kTheta..n-1].
   MatrixXd Hj = MatrixXd::Zero(nu, dim);
@@ -310,7 +321,7 @@ void FeedbackSchedule::computeKalman() {
     Sigma.topLeftCorner(n, n).diagonal() += drift.cwiseAbs2() * h_;
     Sigma += h_ * F_[k] * Sf * F_[k].transpose();
     for (int c = 0; c < layout::kObjectDim; ++c)
-      Sigma(n + c, n + c) += s.slip_acceleration * s.slip_acceleration * h_;
+      Sigma(n + c, n + c) += s.noise.slip_acceleration * s.noise.slip_acceleration * h_;
   };
   auto update = [&](const MatrixXd& H, const VectorXd& r, bool apply) {
     const MatrixXd SH = Sigma * H.transpose();

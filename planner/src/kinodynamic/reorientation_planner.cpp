@@ -149,7 +149,8 @@ PlannerSetup ReorientationPlanner::setup(const Problem& problem) const {
   return out;
 }
 
-bool ReorientationPlanner::solve(const Problem& problem, plan::Plan& plan) {
+bool ReorientationPlanner::solve(const Problem& problem, plan::Plan& plan,
+                                 const SearchContext& context) {
   const PlannerSettings& s = settings_;
   ompl::RNG::setSeed(s.seed == 0 ? 1 : s.seed);
   const PlannerSetup setup = this->setup(problem);
@@ -163,11 +164,11 @@ bool ReorientationPlanner::solve(const Problem& problem, plan::Plan& plan) {
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
   const ob::PlannerTerminationCondition ptc([&] {
     const double t = elapsed();
-    if (s.progress && t - last_report >= 1.0) {
+    if (context.progress && t - last_report >= 1.0) {
       last_report = t;
-      s.progress({t, propagator.propagations(), goal.bestDistance()});
+      context.progress({t, propagator.propagations(), goal.bestDistance()});
     }
-    const bool cancelled = s.cancel != nullptr && s.cancel->load(std::memory_order_relaxed);
+    const bool cancelled = context.cancelled();
     const bool spent = s.max_propagations > 0 && propagator.propagations() >= s.max_propagations;
     return cancelled || spent || t >= s.time_limit;  // the goal stops it too (StopAtGoalPlanner)
   });
@@ -212,7 +213,8 @@ bool ReorientationPlanner::makePlan(const Problem& problem, const PlannerSetup& 
   std::vector<SimState> ends;
   // Contacts pressed by less than the law's min_normal_force share of the weight are free.
   const Cell& cell = model_.cell();
-  const double light = FeedbackSettings{}.min_normal_force * cell.object.mass * cell.gravity;
+  const double light =
+      FeedbackSettings{}.contacts.min_normal_force * cell.object.mass * cell.gravity;
   plan.samples = simulateSegments(simulator_, q0, plan.segments, s.sample_steps, &ends, light);
   // The re-simulation against the planner's own states at the segment ends.
   std::size_t e = 0;

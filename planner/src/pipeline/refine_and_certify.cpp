@@ -29,9 +29,10 @@ bool atLeastAsGood(const plan::Certificate& a, const plan::Certificate& b) {
 
 RefinementResult refineAndCertify(const trajopt::PlanRefiner& refiner, const plan::Plan& plan,
                                   const plan::PlanMargins& margins,
-                                  const plan::CertificateSettings& settings) {
+                                  const plan::CertificateSettings& settings,
+                                  const std::atomic<bool>* cancel) {
   const RbsfModel& model = refiner.model();
-  const std::atomic<bool>* cancel = refiner.settings().cancel;
+  auto cancelled = [cancel] { return cancel != nullptr && cancel->load(); };
   RefinementResult out;
   out.record.plan = plan;
   out.planner_certificate = plan::certify(model, plan, settings, nullptr, cancel);
@@ -40,12 +41,12 @@ RefinementResult refineAndCertify(const trajopt::PlanRefiner& refiner, const pla
   std::vector<trajopt::RefinementCandidate> candidates;
   std::vector<plan::Certificate> certificates;
   const int offered = refiner.candidates(margins);
-  for (int k = 0; k < offered && !refiner.cancelled(); ++k) {
+  for (int k = 0; k < offered && !cancelled(); ++k) {
     if (k > 0 && certificates.back().certified) break;
-    candidates.push_back(refiner.candidate(plan, margins, k));
+    candidates.push_back(refiner.candidate(plan, margins, k, cancel));
     certificates.emplace_back();
     trajopt::RefinementCandidate& c = candidates.back();
-    if (c.usable && !refiner.cancelled()) {
+    if (c.usable && !cancelled()) {
       certificates.back() = plan::certify(model, c.plan, settings, nullptr, cancel);
       c.summary.refined_success_rate = certificates.back().success_rate;
     }

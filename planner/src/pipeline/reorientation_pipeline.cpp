@@ -69,14 +69,13 @@ class PipelineRun {
     const double budget = s_.planner.time_limit;
     ss.time_limit = s_.method == PipelineMethod::kAuto ? s_.support_share * budget : budget;
     ss.feedback = s_.certificate.feedback;
-    ss.cancel = context_.cancel;
     SupportPlanner support(model_, ss);
     PipelineAttempt a;
     a.search = SearchKind::kSupport;
     a.planner = "support";
     emit(StageStarted{PipelineStage::kSupportSearch, a});
     plan::Plan plan;
-    const bool found = support.solve(problem, plan);
+    const bool found = support.solve(problem, plan, context_.cancel);
     a.search_time = since(start);
     a.expansions = support.expansions();
     a.friction_use = support.frictionUse();
@@ -99,15 +98,16 @@ class PipelineRun {
     PlannerSettings ps = s_.planner;
     ps.seed = s_.planner.seed + static_cast<std::uint32_t>(index);
     ps.time_limit = index == 0 ? std::max(left, share) : left;
-    ps.cancel = context_.cancel;
-    if (context_.on_event) ps.progress = [this](const Progress& p) { emit(SearchProgress{p}); };
     ReorientationPlanner search(model_, ps);
     PipelineAttempt a;
     a.planner = toString(ps.planner);
     a.seed = ps.seed;
     emit(StageStarted{PipelineStage::kKinodynamicSearch, a});
     plan::Plan plan;
-    const bool found = search.solve(problem, plan);
+    SearchContext search_context{context_.cancel, nullptr};
+    if (context_.on_event)
+      search_context.progress = [this](const Progress& p) { emit(SearchProgress{p}); };
+    const bool found = search.solve(problem, plan, search_context);
     a.search_time = since(start);
     out_.best_distance = std::min(out_.best_distance, search.bestDistance());
     if (cancelled()) {
@@ -139,7 +139,8 @@ class PipelineRun {
     plan::PlanRecord record;
     if (a.exact && refiner_ != nullptr) {
       emit(StageStarted{PipelineStage::kRefining, a});
-      RefinementResult r = refineAndCertify(*refiner_, plan, margins, certificate_);
+      RefinementResult r =
+          refineAndCertify(*refiner_, plan, margins, certificate_, context_.cancel);
       a.refined = r.refined;
       a.note = r.reason;
       emit(PlanRefined{a, r});
@@ -249,11 +250,7 @@ ReorientationPipeline::ReorientationPipeline(const RbsfModel& model, PipelineSet
 PipelineOutcome ReorientationPipeline::run(const Problem& problem, const RunContext& context) {
   ReorientationPlanner(model_, settings_.planner).checkProblem(problem);  // before any search
   std::optional<trajopt::PlanRefiner> refiner;
-  if (settings_.optimize) {
-    trajopt::OptimizerSettings os = settings_.optimizer;
-    os.cancel = context.cancel;
-    refiner.emplace(model_, os, settings_.refine);
-  }
+  if (settings_.optimize) refiner.emplace(model_, settings_.optimizer, settings_.refine);
   PipelineRun run(model_, settings_, refiner ? &*refiner : nullptr, context);
   return run.run(problem);
 }

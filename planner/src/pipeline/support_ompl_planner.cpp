@@ -80,11 +80,9 @@ ob::PlannerStatus SupportOmplPlanner::solve(const ob::PlannerTerminationConditio
   SupportPlannerSettings s = settings_;
   s.time_limit = std::numeric_limits<double>::infinity();
   std::atomic<bool> stop{false}, done{false};
-  s.cancel = &stop;
-  const std::atomic<bool>* user = settings_.cancel;
   std::thread watcher([&] {
     while (!done.load()) {
-      if (ptc() || (user != nullptr && user->load())) {
+      if (ptc()) {
         stop.store(true);
         return;
       }
@@ -93,7 +91,7 @@ ob::PlannerStatus SupportOmplPlanner::solve(const ob::PlannerTerminationConditio
   });
   SupportPlanner support(model_, s);
   plan::Plan plan;
-  const bool found = support.solve(problem, plan);
+  const bool found = support.solve(problem, plan, &stop);
   done.store(true);
   watcher.join();
   expansions_ = support.expansions();

@@ -78,11 +78,11 @@ const char* toString(PlanOutcome outcome);
 /// \brief One reorientation request.
 struct ReorientationRequest {
   planner::Problem problem;  ///< start pose (part at rest), start_theta, goal pose
-  /// \brief The planner's settings; its `cancel` is replaced by the controller's flag. The
-  ///        default differs from PlannerSettings' in one place: sample_steps = 1, a plan
-  ///        sample (a reference knot) every simulator step, so that the reference passes
-  ///        through every simulated state; with 10 ms knots the cubic between them strays
-  ///        ~0.3 mm from the simulated path, which a feedback law then answers.
+  /// \brief The planner's settings (cancel() and `progress` are the request's run
+  ///        context, not settings). The default differs from PlannerSettings' in one place:
+  ///        sample_steps = 1, a plan sample (a reference knot) every simulator step, so that the
+  ///        reference passes through every simulated state; with 10 ms knots the cubic between them
+  ///        strays ~0.3 mm from the simulated path, which a feedback law then answers.
   planner::PlannerSettings planner = [] {
     planner::PlannerSettings s;
     s.sample_steps = 1;
@@ -91,7 +91,7 @@ struct ReorientationRequest {
   /// \brief Refine the exact plan with rbsf::trajopt; of the planner's plan and the refined
   ///        one the plan with the better certificate is published (refine_and_certify.h).
   bool optimize = false;
-  trajopt::OptimizerSettings optimizer;  ///< its `cancel` is replaced as well
+  trajopt::OptimizerSettings optimizer;  ///< the refinement's settings
   /// \brief How the plan is certified (a fixed count of trials or the sequential default,
   ///        the confidence bound, seed, criteria: plan/certificate.h); the trials run on
   ///        the worker thread, on every core.

@@ -93,10 +93,18 @@ struct PlannerSettings {
   ///        are slow or there is none. false: only SpeedBounds (a throw may be found).
   bool keep_motion_limits = true;
   SamplerSettings sampler;
-  std::function<void(const Progress&)> progress;  ///< called about once per second
+};
+
+/// \brief What one search is told besides its settings: when to stop and whom to tell how
+///        it goes. Settings say what to compute and are plain values; this is the call's.
+struct SearchContext {
   /// \brief When set and it becomes true (another thread, a signal handler), the search
-  ///        stops at its next check and solve() returns the best plan found so far.
+  ///        stops at its next check and returns the best plan found so far.
   const std::atomic<bool>* cancel = nullptr;
+  std::function<void(const Progress&)> progress;  ///< called about once per second
+
+  /// \brief The cancel flag is set and true.
+  bool cancelled() const { return cancel != nullptr && cancel->load(std::memory_order_relaxed); }
 };
 
 /// \brief How near the goal pose a plan must end: the searches' goal region and the

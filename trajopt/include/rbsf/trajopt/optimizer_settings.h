@@ -64,9 +64,6 @@ struct OptimizerSettings {
   int print_level = 0;               ///< Ipopt print_level (0: silent)
   bool derivative_test = false;      ///< run Ipopt's first-order derivative checker
   std::string derivative_test_file;  ///< where the checker's output goes (Ipopt output_file)
-  /// \brief When set and it becomes true, Ipopt stops at its next iteration (status
-  ///        "User_Requested_Stop") and the input plan is returned.
-  const std::atomic<bool>* cancel = nullptr;
 };
 
 }  // namespace rbsf::trajopt

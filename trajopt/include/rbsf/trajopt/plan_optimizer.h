@@ -33,9 +33,11 @@ class PlanOptimizer {
   /// \throws InputError for bad settings.
   PlanOptimizer(const RbsfModel& model, OptimizerSettings settings = {});
 
-  /// \brief Refine `plan` (made by the planner for this model's cell).
+  /// \brief Refine `plan` (made by the planner for this model's cell). When `cancel` is
+  ///        given and becomes true, Ipopt stops at its next iteration (status
+  ///        "User_Requested_Stop") and the input plan is returned.
   /// \throws InputError when the plan does not belong to the model (dimensions).
-  OptimizedPlan optimize(const plan::Plan& plan) const;
+  OptimizedPlan optimize(const plan::Plan& plan, const std::atomic<bool>* cancel = nullptr) const;
 
   const RbsfModel& model() const { return model_; }
   const OptimizerSettings& settings() const { return settings_; }

@@ -79,14 +79,13 @@ class PlanRefiner {
   int candidates(const plan::PlanMargins& margins) const;
   /// \brief Candidate `k` (0: the first solve, 1: the retry) of `plan`. A support plan
   ///        (margins.support) is solved with supportOptimizerSettings(settings(), margins,
-  ///        refine.support). \throws InputError when the plan does not fit the cell.
-  RefinementCandidate candidate(const plan::Plan& plan, const plan::PlanMargins& margins,
-                                int k) const;
+  ///        refine.support); `cancel` stops its solve (PlanOptimizer::optimize).
+  ///        \throws InputError when the plan does not fit the cell.
+  RefinementCandidate candidate(const plan::Plan& plan, const plan::PlanMargins& margins, int k,
+                                const std::atomic<bool>* cancel = nullptr) const;
 
   const RbsfModel& model() const { return optimizer_.model(); }
   const OptimizerSettings& settings() const { return optimizer_.settings(); }
-  /// \brief The cancel flag of the settings was raised.
-  bool cancelled() const;
 
  private:
   /// \brief The optimiser's settings of candidate `k` of a plan with `margins`.

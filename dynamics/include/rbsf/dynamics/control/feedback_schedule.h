@@ -59,15 +59,20 @@
 
 namespace rbsf {
 
-/// \brief Settings of the gains; defaults documented in the file comment.
-struct FeedbackSettings {
+/// \brief The gains' knots in time and the hold after the plan.
+struct GainTiming {
   double gain_period = 0.01;  ///< knot spacing D [s]
   double settle_time = 1.0;   ///< hold at rest after the plan's end [s]
   /// \brief The law's error from the reference at the start of a run decays with this time
   ///        constant instead of being corrected at once [s]; 0 corrects it at once.
   double start_blend = 0.5;
   double horizon_tail = 1.0;  ///< Riccati horizon beyond the last knot [s]
-  double touch_gap = 5e-4;    ///< a reference contact within this gap touches [m]
+};
+
+/// \brief How the plan's contacts are read: which touch, which the mode relies on, when a
+///        planned slider has broken loose.
+struct ContactReading {
+  double touch_gap = 5e-4;  ///< a reference contact within this gap touches [m]
   /// \brief The estimator's model counts a contact the plan keeps stuck (S) sliding only
   ///        above this slip [m/s]; the others at the plant's slip tolerance.
   double estimator_slip_speed = 5e-3;
@@ -77,7 +82,11 @@ struct FeedbackSettings {
   /// \brief A contact is a constraint of the planned mode only when the reference presses
   ///        it with at least this fraction of the part's weight.
   double min_normal_force = 0.02;
-  // LQR: tolerated errors (Bryson's rule).
+};
+
+/// \brief The LQR's weights: tolerated errors and inputs (Bryson's rule) and the integral
+///        action on the part's pose.
+struct LqrWeights {
   double position = 0.005;            ///< part x, y [m]
   double angle = 1.0 * M_PI / 180.0;  ///< part phi [rad]
   double base_angle = 0.01;           ///< theta [rad]
@@ -93,16 +102,22 @@ struct FeedbackSettings {
   /// \brief The law's integral is held within +- integral_limit x (position, angle) x
   ///        integral_time (anti-windup, with no integration while an input is clamped).
   double integral_limit = 3.0;
-  // Joint PD (part_pose: none).
+};
+
+/// \brief The joint PD of a cell that does not see its part (part_pose: none).
+struct JointServo {
   double natural_frequency = 30.0;  ///< omega_n [rad/s]
   double damping_ratio = 1.0;       ///< zeta
   /// \brief The joint-only estimate's process noise: the joints' acceleration off the
-  ///        reference it expects [m/s^2, rad/s^2]. Ten times less than joint_acceleration:
-  ///        the joint law runs slow plans, and a rate estimate that follows the encoders'
-  ///        noise shakes the part loose.
+  ///        reference it expects [m/s^2, rad/s^2]. Ten times less than
+  ///        ProcessNoise::joint_acceleration: the joint law runs slow plans, and a rate
+  ///        estimate that follows the encoders' noise shakes the part loose.
   double servo_acceleration = 0.2;
-  // Kalman filter: process noise intensities [unit / s^2 / sqrt(Hz)] and drift [unit / s /
-  // sqrt(Hz)].
+};
+
+/// \brief The Kalman filter's process noise: intensities [unit / s^2 / sqrt(Hz)] and drift
+///        [unit / s / sqrt(Hz)].
+struct ProcessNoise {
   double part_acceleration = 0.2;          ///< part x, y [m/s^2]
   double part_angular_acceleration = 1.0;  ///< part phi [rad/s^2]
   double joint_acceleration = 2.0;         ///< theta [rad/s^2], l_i [m/s^2]
@@ -110,8 +125,17 @@ struct FeedbackSettings {
   /// \brief Part accelerations outside the planned mode (contacts slipping or sticking
   ///        unlike the plan), on x, y [m/s^2] and phi [rad/s^2] alike.
   double slip_acceleration = 0.01;
-  /// \brief The contact forces the law keeps (contact_force_qp.h).
-  ContactForceSettings forces;
+};
+
+/// \brief Settings of the law and its gains, one struct per concern; defaults documented
+///        in the file comment.
+struct FeedbackSettings {
+  GainTiming timing;            ///< knots, hold and start blend
+  ContactReading contacts;      ///< the plan's contacts as the law reads them
+  LqrWeights lqr;               ///< the part-pose law's weights
+  JointServo servo;             ///< the joint-only law
+  ProcessNoise noise;           ///< the estimator's process noise
+  ContactForceSettings forces;  ///< the contact forces the law keeps (contact_force_qp.h)
 };
 
 /// \brief Gains and step maps at the knots; immutable once built, one per plan and
@@ -148,7 +172,7 @@ class FeedbackSchedule {
   /// \brief Start and end of the plan [s], and end of the settle hold.
   double planStart() const { return reference_.startTime(); }
   double planEnd() const { return reference_.endTime(); }
-  double holdEnd() const { return reference_.endTime() + settings_.settle_time; }
+  double holdEnd() const { return reference_.endTime() + settings_.timing.settle_time; }
 
   /// \brief Knot whose interval holds t (clamped to the knots).
   int knotAt(double t) const;

@@ -50,9 +50,10 @@ class ReorientationPlanner {
   ///        strokes. \throws InputError saying which and why.
   VecQ checkProblem(const Problem& problem) const;
 
-  /// \brief Search. Returns false (and leaves `plan` empty) only when the planner produced
-  ///        no path at all; otherwise plan.status says "exact" or "approximate".
-  bool solve(const Problem& problem, plan::Plan& plan);
+  /// \brief Search until the goal, the budget or `context`'s cancel. Returns false (and
+  ///        leaves `plan` empty) only when the planner produced no path at all; otherwise
+  ///        plan.status says "exact" or "approximate".
+  bool solve(const Problem& problem, plan::Plan& plan, const SearchContext& context = {});
 
   /// \brief The OMPL setup for `problem` (checked with checkProblem()); OMPL not seeded.
   PlannerSetup setup(const Problem& problem) const;

@@ -40,11 +40,12 @@ struct RefinementResult {
 bool atLeastAsGood(const plan::Certificate& a, const plan::Certificate& b);
 
 /// \brief Certify `plan`, its candidates, and choose (file comment). Every number in the
-///        summary is finite. A cancel (the refiner's settings' cancel flag) stops after the
-///        current step: the planner's plan is returned, certified if that had finished.
+///        summary is finite. `cancel`, when given and true, stops the current step and
+///        the rest: the planner's plan is returned, certified if that had finished.
 /// \throws InputError when the plan does not fit the refiner's cell.
 RefinementResult refineAndCertify(const trajopt::PlanRefiner& refiner, const plan::Plan& plan,
                                   const plan::PlanMargins& margins,
-                                  const plan::CertificateSettings& certificate);
+                                  const plan::CertificateSettings& certificate,
+                                  const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace rbsf::planner

@@ -62,9 +62,8 @@ struct SupportPlannerSettings {
   double departure_angle = 1.0 * M_PI / 180;
   /// \brief Lattice steps (psi, theta, X) blocked around a departed stretch's waypoints.
   int block_radius = 1;
-  int max_paths = 40;                         ///< paths run per friction use (at least 1)
-  int sample_steps = 20;                      ///< plan samples every this many steps
-  const std::atomic<bool>* cancel = nullptr;  ///< stops the search when set and true
+  int max_paths = 40;     ///< paths run per friction use (at least 1)
+  int sample_steps = 20;  ///< plan samples every this many steps
 
   /// \brief The search's defaults for the support planner: 5 deg and 2 cm steps, greedy
   ///        (weight 5), sliding normals up to 84 deg from the finger's axis.
@@ -76,9 +75,10 @@ class SupportPlanner {
  public:
   SupportPlanner(const RbsfModel& model, SupportPlannerSettings settings);
 
-  /// \brief Search, then make the plan. False (plan empty) when no support path was found:
-  ///        message() says why.
-  bool solve(const Problem& problem, plan::Plan& plan);
+  /// \brief Search, then make the plan, until a run ends on the goal, the budget is spent
+  ///        or `cancel` (when given) is true. False (plan empty) when no support path was
+  ///        found: message() says why.
+  bool solve(const Problem& problem, plan::Plan& plan, const std::atomic<bool>* cancel = nullptr);
 
   /// \brief Why the last solve() found nothing, empty otherwise.
   const std::string& message() const { return message_; }
@@ -97,6 +97,8 @@ class SupportPlanner {
   const SupportPlannerSettings& settings() const { return settings_; }
 
  private:
+  class Run;  ///< one solve()'s state (support_planner.cpp)
+
   const RbsfModel& model_;
   SupportPlannerSettings settings_;
   std::string message_;

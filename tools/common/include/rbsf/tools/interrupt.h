@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief SIGINT and SIGTERM as a request to stop: the first signal sets a flag that long
-///        searches (PlannerSettings::cancel, OptimizerSettings::cancel) poll, so the tool can
+///        searches poll (planner::RunContext::cancel, handed to every stage), so the tool can
 ///        write its best result so far and exit with exitStatus() (130 for SIGINT, 143 for
 ///        SIGTERM); a second signal ends the process at once with 128 + its number, writing
 ///        nothing more.
