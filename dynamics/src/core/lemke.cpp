@@ -40,6 +40,19 @@ void pivot(Eigen::MatrixXd& T, int n, int r, int c) {
   }
 }
 
+// Keeps the rows of least ratio, ties within kTieTol: row i's `ratio` against the `count`
+// rows in `ties`, whose ratio is `best`. Writes ties[count] at most, so `ties` may be the
+// list being scanned.
+void keepMinimum(double ratio, int i, double& best, int& count, std::vector<int>& ties) {
+  if (count == 0 || ratio < best - kTieTol * (1.0 + std::abs(best))) {
+    best = ratio;
+    count = 0;
+    ties[count++] = i;
+  } else if (ratio <= best + kTieTol * (1.0 + std::abs(best))) {
+    ties[count++] = i;
+  }
+}
+
 // Ratio test of the entering column: the rows of minimum rhs / pivot (ties within kTieTol)
 // among those with a pivot above piv_tol go to `ties`; returns their count (0: a ray).
 int minimumRatioRows(const Eigen::MatrixXd& T, int n, int entering, double piv_tol,
@@ -50,14 +63,7 @@ int minimumRatioRows(const Eigen::MatrixXd& T, int n, int entering, double piv_t
   for (int i = 0; i < n; ++i) {
     const double a = T(i, entering);
     if (!(a > piv_tol)) continue;
-    const double ratio = T(i, c_rhs) / a;
-    if (count == 0 || ratio < best - kTieTol * (1.0 + std::abs(best))) {
-      best = ratio;
-      count = 0;
-      ties[count++] = i;
-    } else if (ratio <= best + kTieTol * (1.0 + std::abs(best))) {
-      ties[count++] = i;
-    }
+    keepMinimum(T(i, c_rhs) / a, i, best, count, ties);
   }
   return count;
 }
@@ -75,14 +81,7 @@ int leavingRow(const Eigen::MatrixXd& T, int n, int entering, const std::vector<
     double lex = 0.0;
     for (int k = 0; k < count; ++k) {
       const int i = ties[k];
-      const double ratio = T(i, col) / T(i, entering);
-      if (kept == 0 || ratio < lex - kTieTol * (1.0 + std::abs(lex))) {
-        lex = ratio;
-        kept = 0;
-        ties[kept++] = i;
-      } else if (ratio <= lex + kTieTol * (1.0 + std::abs(lex))) {
-        ties[kept++] = i;
-      }
+      keepMinimum(T(i, col) / T(i, entering), i, lex, kept, ties);
     }
     count = kept;
     if (count == 1) row = ties[0];
