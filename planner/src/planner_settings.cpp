@@ -50,8 +50,8 @@ void checkSettings(const PlannerSettings& s) {
   if (std::find(all.begin(), all.end(), s.planner) == all.end())
     throw InputError("unknown planner " + std::to_string(static_cast<int>(s.planner)) +
                      " (choose KPIECE1, RRT, SST, EST or PDST)");
-  if (!(s.time_limit > 0.0) || !std::isfinite(s.time_limit))
-    throw InputError("time limit: must be positive and finite");
+  if (!(s.time_limit > 0.0))
+    throw InputError("time limit: must be positive (infinity: no clock, the budgets alone)");
   if (s.steps_per_control < 1 || s.min_control_steps < 1 ||
       s.max_control_steps < s.min_control_steps || s.sample_steps < 1)
     throw InputError("control steps must be positive and ordered");

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <variant>
 #include <vector>
 
@@ -159,6 +160,10 @@ TEST(ReorientationPipeline, BadSettingsAndProblemsAreInputErrors) {
   PipelineSettings s;
   s.planner.time_limit = 0.0;
   EXPECT_THROW(ReorientationPipeline(model, s), InputError);
+  s.planner.time_limit = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(ReorientationPipeline(model, s), InputError);
+  s.planner.time_limit = std::numeric_limits<double>::infinity();  // no clock: accepted
+  EXPECT_NO_THROW(ReorientationPipeline(model, s));
   s = {};
   s.planner.planner = static_cast<KinodynamicPlanner>(99);
   EXPECT_THROW(ReorientationPipeline(model, s), InputError);

@@ -74,7 +74,9 @@ std::optional<KinodynamicPlanner> parsePlanner(std::string_view name);
 /// \brief Everything the planner can be told.
 struct PlannerSettings {
   KinodynamicPlanner planner = KinodynamicPlanner::kKPIECE1;
-  double time_limit = 30.0;  ///< [s]
+  /// \brief Wall-clock bound of the search [s]; infinity: none, max_propagations and the
+  ///        call's cancel flag alone end it (the same plan on any machine, under any load).
+  double time_limit = 30.0;
   /// \brief Propagations at most (0: no bound). A budget in propagations gives the same plan
   ///        on any machine, under any load, where the time limit does not bind first.
   std::uint64_t max_propagations = 0;

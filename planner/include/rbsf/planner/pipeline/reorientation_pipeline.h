@@ -133,8 +133,8 @@ struct PipelineSettings {
   /// \brief The kinodynamic planner; time_limit is the whole run's search budget [s],
   ///        seed the first attempt's seed (cancel and progress come from the RunContext).
   PlannerSettings planner;
-  /// \brief The support planner (its time_limit, cancel and feedback are set by the
-  ///        pipeline).
+  /// \brief The support planner (its time_limit and feedback are set by the pipeline; its
+  ///        cancel flag is the RunContext's).
   SupportPlannerSettings support;
   double support_share = 0.5;     ///< kAuto: the support search's share of the budget
   int max_attempts = 0;           ///< kinodynamic searches at most (0: while the budget lasts)

@@ -43,7 +43,7 @@ struct PivotTurnSettings {
   double stroke_step = 0.015;             ///< the pivot's stroke lattice [m]
   double heuristic_weight = 2.0;          ///< weighted A* (>= 1)
   long max_expansions = 60000;            ///< lattice nodes expanded, every finger together
-  double time_limit = 30.0;               ///< wall time [s]; the budget above is the machine's
+  double time_limit = 30.0;  ///< wall time [s] (infinity: none); the budget above is the machine's
 };
 
 /// \brief The search of the file comment; one per thread. Uses `search`'s geometry, steps,

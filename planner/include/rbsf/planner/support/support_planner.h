@@ -39,7 +39,7 @@ struct SupportPlannerSettings {
   SupportTiming timing;
   FeedbackSettings feedback;    ///< the law of the closed-loop run
   SimulatorSettings simulator;  ///< the plan's physics
-  double time_limit = 30.0;     ///< search wall time, all attempts [s]
+  double time_limit = 30.0;     ///< search wall time, all attempts [s] (infinity: none)
   /// \brief Expansions of all the searches together (0: no bound). A budget in expansions
   ///        gives the same plan on any machine, under any load, where the time limit does not
   ///        bind first.

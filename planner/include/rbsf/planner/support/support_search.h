@@ -95,7 +95,7 @@ struct SupportSearchSettings {
   ///        keeping the path with the fewest phase runs, then the shortest (0: the first).
   double search_on = 1.0;
   long max_expansions = 400000;
-  double time_limit = 30.0;  ///< wall time [s]
+  double time_limit = 30.0;  ///< wall time [s] (infinity: none)
   SupportSettings support;
 };
 
