@@ -92,8 +92,7 @@ TEST(SupportOmplPlanner, StatusesForATurnWithoutAPathAndAnotherPropagationStep) 
     EXPECT_EQ(stopped, ob::PlannerStatus::TIMEOUT) << stopped.asString();
     s.planner->clear();
     s.setup.simple_setup->getProblemDefinition()->clearSolutionPaths();
-    const ob::PlannerStatus out =
-        s.setup.simple_setup->solve(ob::plannerNonTerminatingCondition());
+    const ob::PlannerStatus out = s.setup.simple_setup->solve(ob::plannerNonTerminatingCondition());
     EXPECT_EQ(out, ob::PlannerStatus::ABORT) << out.asString();
     EXPECT_TRUE(s.planner->reach().measured);
   }
