@@ -4,11 +4,11 @@
 #include <unistd.h>
 
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "rbsf/controller/reorientation_controller.h"
+#include "test_support.h"
 
 namespace rbsf::controller {
 
@@ -24,7 +24,7 @@ inline const std::string& planFile() {
     r.problem.goal = {0.1, 0.40, -15.0 * M_PI / 180.0};
     r.method = planner::PipelineMethod::kAuto;
     // Budgets in work, not time: the same plan on a loaded machine (no clock).
-    r.planner.time_limit = std::numeric_limits<double>::infinity();
+    r.planner = rbsf::test::withoutClock(r.planner);
     r.planner.max_propagations = 200000;
     r.support.max_expansions = 100000;
     r.certificate.trials = 4;

@@ -5,7 +5,6 @@
 
 #include <array>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
@@ -16,6 +15,7 @@
 #include "rbsf/plan/certificate.h"
 #include "rbsf/planner/kinodynamic/reorientation_planner.h"
 #include "sim_test_support.h"
+#include "test_support.h"
 
 namespace rbsf::planner {
 using namespace rbsf::plan;  // the plan the planner makes
@@ -68,9 +68,8 @@ class DecisiveModesTest : public ::testing::Test {
   static PlannerSettings settings(std::uint32_t seed) {
     PlannerSettings s;
     s.seed = seed;
-    s.time_limit =
-        std::numeric_limits<double>::infinity();  // no clock: the budget bounds the search
-    s.max_propagations = 200000;                  // the searches end at the goal well within it
+    s = test::withoutClock(s);
+    s.max_propagations = 200000;  // the searches end at the goal well within it
     return s;
   }
 };

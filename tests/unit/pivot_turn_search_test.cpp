@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,6 +15,7 @@
 #include "rbsf/planner/support/pivot_turn_search.h"
 #include "rbsf/planner/support/support_planner.h"
 #include "support_path_checks.h"
+#include "test_support.h"
 
 namespace rbsf::planner {
 namespace {
@@ -32,11 +32,7 @@ SupportSearchSettings searchAt(double friction_use) {
 }
 
 /// Budget-bound: the expansions end the search, never the clock (none is set).
-PivotTurnSettings budgetOnly() {
-  PivotTurnSettings s;
-  s.time_limit = std::numeric_limits<double>::infinity();
-  return s;
-}
+PivotTurnSettings budgetOnly() { return test::withoutClock(PivotTurnSettings{}); }
 
 const Pose kStart{0.1, 0.40, 0.0};
 /// The analysis's quarter turn: one pivot on finger 3, then the base turns at rest.

@@ -8,7 +8,6 @@
 #include <atomic>
 #include <cmath>
 #include <fstream>
-#include <limits>
 #include <string>
 #include <utility>
 
@@ -22,6 +21,7 @@
 #include "rbsf/planner/kinodynamic/planner_setup.h"
 #include "rbsf/planner/kinodynamic/reorientation_planner.h"
 #include "rbsf/planner/kinodynamic/state_space.h"
+#include "test_support.h"
 
 namespace rbsf::planner {
 using namespace rbsf::plan;  // the plan the planner makes
@@ -39,9 +39,8 @@ Problem smallProblem() {
 PlannerSettings testSettings(std::uint32_t seed) {
   PlannerSettings s;
   s.seed = seed;
-  s.time_limit =
-      std::numeric_limits<double>::infinity();  // no clock: the budget below bounds the search
-  s.max_propagations = 200000;                  // the searches below end at the goal well within it
+  s = test::withoutClock(s);
+  s.max_propagations = 200000;  // the searches below end at the goal well within it
   return s;
 }
 

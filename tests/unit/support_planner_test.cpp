@@ -9,7 +9,6 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <limits>
 #include <set>
 #include <vector>
 
@@ -21,6 +20,7 @@
 #include "rbsf/planner/support/support_planner.h"
 #include "rbsf/planner/support/support_trajectory.h"
 #include "support_path_checks.h"
+#include "test_support.h"
 
 namespace rbsf::planner {
 using namespace rbsf::plan;  // the plan the planner makes
@@ -122,8 +122,7 @@ TEST(SupportSearch, ASearchedOutTurnSaysWhatItReachedAndWhatStoppedIt) {
   const RbsfModel& model = defaultModel();
   SupportSearchSettings s = searchSettings();
   s.max_expansions = 6000;
-  s.time_limit =
-      std::numeric_limits<double>::infinity();  // no clock: the expansions bound the search
+  s = test::withoutClock(s);
   SupportSearch search(model, s);
   const Pose over{0.1, 0.40, M_PI};
   const SupportPath path = search.search(kStart, 0.0, over);

@@ -1,6 +1,7 @@
 #pragma once
 // Cells built in code and random contact states for the unit tests.
 
+#include <limits>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -12,6 +13,15 @@
 #include "rbsf/dynamics/core/state_layout.h"
 
 namespace rbsf::test {
+
+/// `settings` without a clock (an infinite time_limit): its budget (expansions,
+/// propagations) alone ends the search, so the outcome is the same on an idle and on a
+/// loaded machine.
+template <class Settings>
+Settings withoutClock(Settings settings) {
+  settings.time_limit = std::numeric_limits<double>::infinity();
+  return settings;
+}
 
 enum class ShapeKind { kEllipse, kCircle, kSuperellipse };
 

@@ -2,7 +2,6 @@
 // Shared by the trajopt tests: the default cell and one short real plan (the planner's
 // 15 degree turn with a fixed seed), planned once per test binary.
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "rbsf/dynamics/core/cell.h"
@@ -13,6 +12,7 @@
 #include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/plan.h"
 #include "rbsf/planner/kinodynamic/reorientation_planner.h"
+#include "test_support.h"
 
 namespace rbsf::trajopt::test {
 
@@ -28,8 +28,7 @@ inline const plan::Plan& shortPlan() {
   static const plan::Plan plan = [] {
     planner::PlannerSettings s;
     s.seed = 5;
-    s.time_limit =
-        std::numeric_limits<double>::infinity();  // no clock: the budget bounds the search
+    s = rbsf::test::withoutClock(s);
     s.max_propagations = 200000;
     s.keep_motion_limits = false;
     planner::ReorientationPlanner planner(defaultModel(), s);

@@ -5,12 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 
 #include "rbsf/plan/certificate.h"
 #include "rbsf/planner/pipeline/refine_and_certify.h"
 #include "rbsf/planner/support/support_planner.h"
 #include "rbsf/trajopt/plan_refinement.h"
+#include "test_support.h"
 #include "trajopt_support.h"
 
 namespace rbsf::trajopt {
@@ -26,8 +26,7 @@ const Planned& supportTurn() {
   static const Planned out = [] {
     planner::SupportPlannerSettings s;
     s.max_expansions = 20000;
-    s.time_limit =
-        std::numeric_limits<double>::infinity();  // no clock: the expansions bound the search
+    s = rbsf::test::withoutClock(s);
     planner::SupportPlanner planner(test::defaultModel(), s);
     planner::Problem p;
     p.start = {0.1, 0.40, 0.0};
