@@ -1,5 +1,6 @@
 #include "rbsf/dynamics/control/contact_force_qp.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -228,6 +229,49 @@ void ContactForceQp::setCost(const VecQ& q, const VecU& demand) {
   qp_.g[lay.violation()] = s.violation_penalty;
   qp_.H(lay.shortfall(), lay.shortfall()) = 1.0;
   qp_.g[lay.shortfall()] = s.shortfall_penalty;
+}
+
+void ContactForceQp::motionDemand(const VecQ& q, const VecQ& vdot, VecU& demand) {
+  const int n = model_.configDim(), nu = model_.controlDim();
+  model_.massMatrix(q, M_);
+  SB_.resize(n, nu);
+  VecQ target(n);
+  for (int c = 0; c < n; ++c) {
+    const bool moment = c == layout::kPhi || c == layout::kTheta;
+    const double scale = M_(c, c) / (weight_ * (moment ? kMomentLever : 1.0));
+    SB_.row(c) = scale * B_.row(c);
+    target[c] = scale * (vdot[c] - a0_[c]);
+  }
+  MatQQ H = SB_.transpose() * SB_;
+  H.diagonal().array() += settings_.input_regularization / (weight_ * weight_);
+  demand = H.ldlt().solve(SB_.transpose() * target);
+}
+
+bool ContactForceQp::solveForMotion(const VecQ& q, const VecQ& v, const ContactTick& tick,
+                                    const VecQ& vdot, VecU& tau, const VecU& feedforward) {
+  VecU demand = VecU::Zero(model_.controlDim());
+  if (feedforward.size() == demand.size()) {
+    demand = feedforward;
+  } else {
+    predict(q, v, tick, demand);
+    motionDemand(q, vdot, demand);
+  }
+  solve(q, v, tick, demand, tau);
+  // Again with the input chosen as the demand: its internal forces keep the rows where they
+  // can, so a free contact is predicted saturated only where the rows cannot keep it in its
+  // cone (the least-norm demand's internal forces are none).
+  demand = tau;
+  return solve(q, v, tick, demand, tau);
+}
+
+double ContactForceQp::motionError(const VecU& tau, const VecQ& vdot) const {
+  const VecQ a = predictedAcceleration(tau) - vdot;
+  double worst = 0.0;
+  for (int c = 0; c < a.size(); ++c) {
+    const bool moment = c == layout::kPhi || c == layout::kTheta;
+    worst = std::max(worst, M_(c, c) * std::abs(a[c]) / (weight_ * (moment ? kMomentLever : 1.0)));
+  }
+  return worst;
 }
 
 void ContactForceQp::contactRows(RowWriter& w, int i, const VecQ& v, const ContactTick& tick,

@@ -1,6 +1,6 @@
-// PivotTurnSearch: the rigid runs and the finish of a simple turn; search() is defined with its
-// Run (pivot_turn_search_run.cpp) so that the private run header and this source do not
-// include each other.
+// PivotTurnSearch: the pivots of a path, the rigid runs and the finish of a simple turn;
+// search() is defined with its Run (pivot_turn_search_run.cpp) so that the private run header
+// and this source do not include each other.
 #include "rbsf/planner/support/pivot_turn_search.h"
 
 #include <algorithm>
@@ -8,6 +8,13 @@
 #include <cstdint>
 
 namespace rbsf::planner {
+
+int pivotRuns(const std::vector<SupportStep>& steps) {
+  int pivots = 0;
+  for (std::size_t k = 0; k < steps.size(); ++k)
+    if (steps[k].set.pivot() >= 0 && (k == 0 || steps[k].set != steps[k - 1].set)) ++pivots;
+  return pivots;
+}
 
 PivotTurnSearch::PivotTurnSearch(SupportSearch& search, PivotTurnSettings settings)
     : search_(search), settings_(settings) {}

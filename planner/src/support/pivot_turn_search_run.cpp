@@ -1,5 +1,6 @@
-// PivotTurnSearch::Run: the leads, the lattice of each pivot finger and its expansion (moves,
-// switches, the join to the goal) of the search of pivot_turn_search.h.
+// PivotTurnSearch::Run: the lattice of simple turns, deepened one pivot at a time, and its
+// expansion (pivot and rigid moves, switches at rest, the join to the goal) of the search of
+// pivot_turn_search.h.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -9,14 +10,19 @@
 namespace rbsf::planner {
 namespace {
 
-/// A lattice node of the pivot: (psi, theta, stroke) indices and the touching fingers.
-std::uint64_t latticeKey(int i, int j, int l, std::uint32_t touching) {
-  auto field = [](int v) { return static_cast<std::uint64_t>(v + 32768) & 0xffffu; };
-  return (field(i) << 48) | (field(j) << 32) | (field(l) << 16) | (touching & 0xffffu);
-}
-
 /// Whether a sliding contact of `set` slips one way in `before` and the other in `after`
 /// (each more than kSlipStep: a slider that barely moves does not turn back).
+/// A slider slips at least this much in each move of a pivot [m]: one whose slip passes
+/// through zero inside a run sticks there, and the law must pull it loose again mid-run.
+constexpr double kRunSlip = 1e-3;
+
+/// Whether every sliding contact of `set` slips at least kRunSlip in `slip`.
+bool slidersKeepSliding(const VecC& slip, const ContactSet& set) {
+  for (int i = 0; i < slip.size(); ++i)
+    if (set.touches(i) && !set.sticks(i) && std::abs(slip[i]) < kRunSlip) return false;
+  return true;
+}
+
 bool reverses(const VecC& before, const VecC& after, const ContactSet& set) {
   if (before.size() != after.size()) return false;
   for (int i = 0; i < before.size(); ++i)
@@ -27,6 +33,12 @@ bool reverses(const VecC& before, const VecC& after, const ContactSet& set) {
 }
 
 }  // namespace
+
+std::size_t PivotTurnSearch::Run::CellKeyHash::operator()(const CellKey& k) const {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the seven numbers
+  for (std::int32_t v : k) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
+  return static_cast<std::size_t>(h);
+}
 
 PivotTurnSearch::Run::Run(PivotTurnSearch& owner, const Pose& start, double start_theta,
                           const Pose& goal, const std::atomic<bool>* cancel)
@@ -43,125 +55,112 @@ PivotTurnSearch::Run::Run(PivotTurnSearch& owner, const Pose& start, double star
       ds_(owner.settings_.stroke_step),
       ls_(ss_.length_scale),
       m_(geometry_.model().numFingers()),
-      all_((1u << m_) - 1u),
       p0_(JigPose::fromWorld(start, start_theta)),
-      placed_(geometry_.placedSet(p0_)),
       stop_at_(owner.settings_.max_expansions) {}
 
 SupportPath PivotTurnSearch::Run::run() {
-  collectLeads();
-  for (int k = 0;
-       k < m_ && !budget_out_ && !timed_out_ && !(result_.found && result_.expansions >= stop_at_);
-       ++k) {
-    if (!startPivot(k)) continue;
-    seedPivot();
-    if (!explorePivot()) return std::move(result_);
+  // A goal that no finger holds at any base angle cannot end a pivot: no search.
+  bool held = false;
+  const Cell& cell = geometry_.model().cell();
+  const SupportSettings& gs = geometry_.settings();
+  for (double th = cell.base.theta_min; th <= cell.base.theta_max && !held; th += 0.5 * a_)
+    for (int k = 0; k < m_ && !held; ++k) {
+      double l = 0.0, xi = 0.0;
+      const FingerParams& f = cell.fingers[k];
+      held = geometry_.entry(JigPose::fromWorld(goal_, th), k, l, xi, gs.min_sticking_cosine) &&
+             l >= f.stroke_min + gs.stroke_margin && l <= f.stroke_max - gs.stroke_margin;
+    }
+  if (!held) {
+    result_.message = "no pivot finger holds the part on the goal at any base angle";
+    return std::move(result_);
   }
-  if (!result_.found)
-    result_.message = timed_out_    ? "no simple turn within the time limit"
-                      : budget_out_ ? "no simple turn within " +
-                                          std::to_string(settings_.max_expansions) + " expansions"
-                                    : "no pivot finger turns the part onto the goal in one pivot";
+  for (int depth = 1; depth <= settings_.max_pivots && !result_.found; ++depth)
+    if (!explore(depth) || budget_out_ || timed_out_) break;
+  if (!result_.found && result_.message.empty())
+    result_.message =
+        timed_out_ ? "no simple turn within the time limit"
+        : budget_out_
+            ? "no simple turn within " + std::to_string(settings_.max_expansions) + " expansions"
+            : "no simple turn of at most " + std::to_string(settings_.max_pivots) + " pivots";
   return std::move(result_);
 }
 
-bool PivotTurnSearch::Run::root(const ContactSet& set, SupportStep& s) {
-  if (!search_.anchorFor(p0_, set, s.anchor)) return false;
-  const Support sup = geometry_.check(p0_, set);
-  if (!sup.valid) return false;
-  s.pose = p0_;
-  s.set = set;
-  s.q = sup.q;
-  s.margin = sup.margin;
-  s.rest = true;
-  return true;
+std::vector<ContactSet> PivotTurnSearch::Run::restSets(const JigPose& pose,
+                                                       std::uint32_t touching) const {
+  const std::uint32_t reach = touching | geometry_.placedSet(pose).touching;
+  std::vector<ContactSet> sets;
+  for (std::uint32_t t = reach; t != 0; t = (t - 1) & reach) {
+    const int n = ContactSet::bitCount(t);
+    if (n < 2) continue;
+    sets.push_back(ContactSet{t, t});
+    if (n - 1 > settings_.max_sliders) continue;
+    for (int k = 0; k < m_; ++k)
+      if ((t >> k) & 1u) sets.push_back(ContactSet{t, 1u << k});
+  }
+  return sets;
 }
 
-void PivotTurnSearch::Run::collectLeads() {
-  leads_.assign(1, Lead());
-  for (std::uint32_t t = placed_.touching; t != 0; t = (t - 1) & placed_.touching) {
-    SupportStep r;
-    if (ContactSet::bitCount(t) < 2 || !root(ContactSet{t, t}, r)) continue;
-    leads_.push_back(Lead{{r}, 0.0});
-    for (int dir : {1, -1}) rigidLeads(r, dir);
+void PivotTurnSearch::Run::seed() {
+  for (const ContactSet& set : restSets(p0_, geometry_.placedSet(p0_).touching)) {
+    Node node;
+    node.pivots = set.pivot() >= 0 ? 1 : 0;
+    if (search_.restAt(p0_, set, node.step)) push(node);
   }
 }
 
-void PivotTurnSearch::Run::rigidLeads(const SupportStep& r, int dir) {
-  Lead lead{{r}, 0.0};
-  for (int n = 1;; ++n) {
-    JigPose pose = p0_;
-    pose.theta = start_theta_ + dir * n * a_;
-    SupportStep next;
-    if (!search_.stepTo(lead.steps.back(), pose, r.set, PivotAnchor{}, next)) break;
-    lead.g += moveCost(lead.steps.back(), next, ss_);
-    lead.steps.push_back(next);
-    leads_.push_back(lead);
-  }
-}
-
-bool PivotTurnSearch::Run::startPivot(int k) {
-  k_ = k;
-  anchor_ = PivotAnchor();
-  anchor_.finger = k;
-  if (!placed_.touches(k) || !geometry_.entry(p0_, k, anchor_.stroke, anchor_.xi,
-                                              geometry_.settings().min_sticking_cosine))
-    return false;
-  if (!geometry_.pivotOnto(anchor_, goal_, p0_.psi, psi_goal_, theta_goal_, l_goal_)) return false;
-  touchings_.clear();
-  for (std::uint32_t t = all_; t != 0; t = (t - 1) & all_)
-    if (((t >> k) & 1u) != 0 && ContactSet::bitCount(t) >= 2) touchings_.push_back(t);
-  nodes_.clear();
-  best_.clear();
-  open_ = decltype(open_)();
-  return true;
-}
-
-void PivotTurnSearch::Run::seedPivot() {
-  for (int li = 0; li < static_cast<int>(leads_.size()); ++li)
-    for (std::uint32_t t : touchings_) {
-      const ContactSet set{t, 1u << k_};
-      Node node;
-      node.lead = li;
-      if (li == 0) {
-        if (!root(set, node.step)) continue;
-      } else {
-        const SupportStep& from = leads_[li].steps.back();
-        if (!search_.stepTo(from, from.pose, set, anchor_, node.step)) continue;
-        node.g = leads_[li].g + ss_.switch_cost;
-        node.j = static_cast<int>(std::lround((from.pose.theta - start_theta_) / a_));
-      }
-      push(node);
-    }
+PivotTurnSearch::Run::CellKey PivotTurnSearch::Run::key(const Node& node) const {
+  const JigPose& p = node.step.pose;
+  auto idx = [](double v, double step) { return static_cast<std::int32_t>(std::lround(v / step)); };
+  return CellKey{idx(p.psi - p0_.psi, a_),
+                 idx(p.theta - start_theta_, a_),
+                 idx(p.X, settings_.xy_step),
+                 idx(p.Y, settings_.xy_step),
+                 static_cast<std::int32_t>(node.step.set.touching),
+                 static_cast<std::int32_t>(node.step.set.sticking),
+                 node.pivots};
 }
 
 double PivotTurnSearch::Run::heuristic(const SupportStep& s) const {
-  return std::abs(s.pose.psi - psi_goal_) + std::abs(s.anchor.stroke - l_goal_) / ls_ +
-         std::abs(s.pose.theta - theta_goal_);
+  // A pivot whose anchor can put the part on the goal: the way to that pivot's end.
+  double psi = 0.0, theta = 0.0, l = 0.0;
+  if (s.set.pivot() >= 0 && geometry_.pivotOnto(s.anchor, goal_, s.pose.psi, psi, theta, l))
+    return std::abs(s.pose.psi - psi) + std::abs(s.anchor.stroke - l) / ls_ +
+           std::abs(s.pose.theta - theta);
+  // Else another pivot first, and the world pose to cover.
+  const Pose w = s.pose.world();
+  return settings_.pivot_cost + std::abs(w.phi - goal_.phi) +
+         std::hypot(w.x - goal_.x, w.y - goal_.y) / ls_;
 }
 
 void PivotTurnSearch::Run::push(const Node& node) {
-  const std::uint64_t key = latticeKey(node.i, node.j, node.l, node.step.set.touching);
-  const auto it = best_.find(key);
+  const CellKey k = key(node);
+  const auto it = best_.find(k);
   if (it != best_.end() && it->second <= node.g + 1e-12) return;
-  best_[key] = node.g;
+  best_[k] = node.g;
   nodes_.push_back(node);
   open_.emplace(node.g + settings_.heuristic_weight * heuristic(node.step),
                 static_cast<int>(nodes_.size()) - 1);
 }
 
-bool PivotTurnSearch::Run::explorePivot() {
+bool PivotTurnSearch::Run::explore(int depth) {
+  nodes_.clear();
+  best_.clear();
+  open_ = decltype(open_)();
+  seed();
   while (!open_.empty()) {
     if (!take()) continue;
+    if (node_.pivots > depth) continue;
     const Budget budget = spend();
     if (budget == Budget::kStop) break;
     if (budget == Budget::kCancel) return false;
-    if (tryFinish()) break;  // the next pivot finger
+    if (tryFinish()) continue;
     Node next;
     next.parent = id_;
-    next.lead = node_.lead;
-    latticeMoves(next);
-    switches(next);
+    if (node_.step.set.pivot() >= 0)
+      pivotMoves(next);
+    else if (node_.step.set.stickingCount() >= 2)
+      rigidMoves(next);
+    switches(next, depth);
   }
   return true;
 }
@@ -170,8 +169,7 @@ bool PivotTurnSearch::Run::take() {
   id_ = open_.top().second;
   open_.pop();
   node_ = nodes_[id_];
-  const std::uint64_t key = latticeKey(node_.i, node_.j, node_.l, node_.step.set.touching);
-  return !(best_[key] < node_.g - 1e-12);
+  return !(best_[key(node_)] < node_.g - 1e-12);
 }
 
 PivotTurnSearch::Run::Budget PivotTurnSearch::Run::spend() {
@@ -193,13 +191,35 @@ PivotTurnSearch::Run::Budget PivotTurnSearch::Run::spend() {
   return Budget::kGoOn;
 }
 
+bool PivotTurnSearch::Run::keepsWay(const std::array<int, 3>& dir, const std::array<int, 3>& d,
+                                    std::array<int, 3>& out) {
+  for (int c = 0; c < 3; ++c) {
+    if (d[c] != 0 && dir[c] != 0 && d[c] != dir[c]) return false;
+    out[c] = dir[c] != 0 ? dir[c] : d[c];
+  }
+  return true;
+}
+
 bool PivotTurnSearch::Run::tryFinish() {
   const SupportStep& s = node_.step;
-  if (!(std::abs(s.pose.psi - psi_goal_) <= 0.5 * a_ + 1e-9 &&
-        std::abs(s.anchor.stroke - l_goal_) <= 0.5 * ds_ + 1e-9))
-    return false;
-  const std::vector<SupportStep> tail = owner_.finish(s, psi_goal_, theta_goal_, l_goal_);
+  if (s.set.pivot() < 0) return false;
+  double psi = 0.0, theta = 0.0, l = 0.0;
+  if (!geometry_.pivotOnto(s.anchor, goal_, s.pose.psi, psi, theta, l)) return false;
+  // Within a step ahead of the pivot's way (half a step when it has none yet), and half a
+  // stroke step.
+  auto way = [](double d) { return std::abs(d) < 1e-12 ? 0 : (d > 0.0 ? 1 : -1); };
+  const double ahead = node_.dir[0] * (psi - s.pose.psi);
+  const bool near = node_.dir[0] != 0 ? ahead >= -1e-9 && ahead <= a_ + 1e-9
+                                      : std::abs(psi - s.pose.psi) <= 0.5 * a_ + 1e-9;
+  if (!near || std::abs(s.anchor.stroke - l) > 0.5 * ds_ + 1e-9) return false;
+  std::array<int, 3> dir{};
+  if (!keepsWay(node_.dir, {way(psi - s.pose.psi), way(psi - s.pose.psi), 0}, dir)) return false;
+  const std::vector<SupportStep> tail = owner_.finish(s, psi, theta, l);
   if (tail.empty()) return false;
+  // Nor does a slider turn back where the last bit begins.
+  if (!s.rest && tail.front().set == s.set &&
+      reverses(node_.slip, geometry_.slipDirections(s.q, tail.front().q), s.set))
+    return false;
   keepPath(tail);
   return true;
 }
@@ -207,53 +227,74 @@ bool PivotTurnSearch::Run::tryFinish() {
 void PivotTurnSearch::Run::keepPath(const std::vector<SupportStep>& tail) {
   std::vector<SupportStep> path;
   for (int n = id_; n >= 0; n = nodes_[n].parent) path.push_back(nodes_[n].step);
-  const std::vector<SupportStep>& lead = leads_[node_.lead].steps;
-  path.insert(path.end(), lead.rbegin(), lead.rend());
   std::reverse(path.begin(), path.end());
   path.insert(path.end(), tail.begin(), tail.end());
-  const int runs = phaseRuns(path);
+  const int pivots = pivotRuns(path), runs = phaseRuns(path);
   const double length = pathLength(path, ls_);
   if (!result_.found)
     stop_at_ = std::min(
         settings_.max_expansions,
         result_.expansions + static_cast<long>(std::ceil(ss_.search_on * result_.expansions)));
-  if (!result_.found || runs < best_runs_ || (runs == best_runs_ && length < best_length_)) {
-    result_.found = true;
-    result_.steps = std::move(path);
-    best_runs_ = runs;
-    best_length_ = length;
-  }
+  const bool better = !result_.found || pivots < best_pivots_ ||
+                      (pivots == best_pivots_ &&
+                       (runs < best_runs_ || (runs == best_runs_ && length < best_length_)));
+  if (!better) return;
+  result_.found = true;
+  result_.steps = std::move(path);
+  best_pivots_ = pivots;
+  best_runs_ = runs;
+  best_length_ = length;
 }
 
-void PivotTurnSearch::Run::latticeMoves(Node& next) {
+void PivotTurnSearch::Run::pivotMoves(Node& next) {
   const SupportStep& s = node_.step;
+  next.pivots = node_.pivots;
   for (int di = -1; di <= 1; ++di)
     for (int dj = -1; dj <= 1; ++dj)
       for (int dl = -1; dl <= 1; ++dl) {
         if (di == 0 && dj == 0 && dl == 0) continue;
-        next.i = node_.i + di, next.j = node_.j + dj, next.l = node_.l + dl;
+        const int world = di + dj > 0 ? 1 : di + dj < 0 ? -1 : 0;
+        if (!keepsWay(node_.dir, {di, world, 0}, next.dir)) continue;
         PivotAnchor moved = s.anchor;
-        moved.stroke = anchor_.stroke + next.l * ds_;
+        moved.stroke += dl * ds_;
         const JigPose pose =
-            geometry_.pivotPose(moved, p0_.psi + next.i * a_, start_theta_ + next.j * a_);
+            geometry_.pivotPose(moved, s.pose.psi + di * a_, s.pose.theta + dj * a_);
         if (!search_.stepTo(s, pose, s.set, moved, next.step)) continue;
         // A slider whose slip turns back sticks on the way: that is a rest, not a move.
         next.slip = geometry_.slipDirections(s.q, next.step.q);
         if (!s.rest && reverses(node_.slip, next.slip, s.set)) continue;
+        if (!slidersKeepSliding(next.slip, s.set)) continue;
         next.g = node_.g + moveCost(s, next.step, ss_);
         push(next);
       }
 }
 
-void PivotTurnSearch::Run::switches(Node& next) {
-  // At rest, fingers touch or let go; the pivot goes on about the same point.
+void PivotTurnSearch::Run::rigidMoves(Node& next) {
   const SupportStep& s = node_.step;
-  next.i = node_.i, next.j = node_.j, next.l = node_.l;
+  next.pivots = node_.pivots;
   next.slip = VecC();
-  for (std::uint32_t t : touchings_) {
-    if (t == s.set.touching) continue;
-    if (!search_.stepTo(s, s.pose, ContactSet{t, 1u << k_}, s.anchor, next.step)) continue;
-    next.g = node_.g + ss_.switch_cost;
+  for (int dj : {1, -1}) {
+    if (!keepsWay(node_.dir, {0, dj, 0}, next.dir)) continue;  // the world angle turns with theta
+    JigPose pose = s.pose;
+    pose.theta += dj * a_;
+    if (!search_.stepTo(s, pose, s.set, PivotAnchor{}, next.step)) continue;
+    next.g = node_.g + moveCost(s, next.step, ss_);
+    push(next);
+  }
+}
+
+void PivotTurnSearch::Run::switches(Node& next, int depth) {
+  const SupportStep& s = node_.step;
+  next.slip = VecC();
+  next.dir = {};
+  for (const ContactSet& set : restSets(s.pose, s.set.touching)) {
+    if (set == s.set) continue;
+    next.pivots = node_.pivots + (set.pivot() >= 0 ? 1 : 0);
+    if (next.pivots > depth) continue;
+    PivotAnchor anchor;
+    if (!search_.anchorFor(s.pose, set, anchor)) continue;
+    if (!search_.stepTo(s, s.pose, set, anchor, next.step)) continue;
+    next.g = node_.g + ss_.switch_cost + (set.pivot() >= 0 ? settings_.pivot_cost : 0.0);
     push(next);
   }
 }

@@ -15,6 +15,21 @@ Mat2 rotation(double a) {
 
 }  // namespace
 
+ContactRoles supportRoles(const ContactSet& set, const VecC& slip, int m) {
+  ContactRoles roles{};
+  for (int i = 0; i < m; ++i) {
+    if (!set.touches(i))
+      roles[i] = ContactRole::kLifted;
+    else if (set.sticks(i))
+      roles[i] = ContactRole::kStick;
+    else if (slip.size() > i && std::abs(slip[i]) > kSlipStep)
+      roles[i] = slip[i] > 0.0 ? ContactRole::kSlidePositive : ContactRole::kSlideNegative;
+    else
+      roles[i] = ContactRole::kFree;
+  }
+  return roles;
+}
+
 Pose JigPose::world() const {
   const Vec2 p = rotation(theta) * Vec2(X, Y);
   return Pose{p.x(), p.y(), psi + theta};
@@ -35,6 +50,7 @@ SupportGeometry::SupportGeometry(const RbsfModel& model, SupportSettings setting
     : model_(model),
       settings_(settings),
       balancer_(model, settings.balance),
+      law_(model, settings.law, settings.roles),
       data_(model.numFingers()) {}
 
 bool SupportGeometry::entry(const JigPose& pose, int i, double& stroke, double& xi,
@@ -110,12 +126,25 @@ Support SupportGeometry::balanceAt(const VecQ& q, const ContactSet& set, const V
   out.margin = out.balance.margin;
   out.valid = out.balance.balanced && (!settings_.require_determined || out.balance.determined);
   out.refusal = out.balance.balanced ? SupportRule::kUndetermined : SupportRule::kBalance;
+  out.law.feasible = true;
+  if (out.valid && settings_.law_check) {
+    out.law = lawCheck(q, set, slip, true, out.balance.tau);
+    out.valid = out.law.feasible;
+    out.refusal = SupportRule::kLaw;
+  }
   return out;
 }
 
 bool SupportGeometry::breaksAway(const VecQ& q, const ContactSet& set, const VecC& slip) {
   if (set.sticking == set.touching) return true;
-  return balancer_.breakaway(q, set, data_, slip).balanced;
+  const ContactBalance b = balancer_.breakaway(q, set, data_, slip);
+  if (!b.balanced) return false;
+  return !settings_.law_check || lawCheck(q, set, slip, false, b.tau).feasible;
+}
+
+RoleVerdict SupportGeometry::lawCheck(const VecQ& q, const ContactSet& set, const VecC& slip,
+                                      bool loose, const VecU& tau) {
+  return law_.check(q, supportRoles(set, slip, model_.numFingers()), loose, tau);
 }
 
 VecC SupportGeometry::slipDirections(const VecQ& q0, const VecQ& q1) {

@@ -70,6 +70,7 @@ class SupportPlanner::Run {
     for (double use : s_.simple_turn_friction_uses) {
       if (runs_ || cancelled() || !budgetLeft()) break;
       SupportSearchSettings ss = s_.search;
+      ss.support.law = s_.feedback.forces;
       ss.support.balance.friction_use = use;
       SupportSearch search(p_.model_, ss);
       PivotTurnSearch simple(search, s_.simple_turn);
@@ -94,6 +95,7 @@ class SupportPlanner::Run {
     for (double use : s_.friction_uses) {
       if (runs_ || cancelled()) break;
       SupportSearchSettings ss = s_.search;
+      ss.support.law = s_.feedback.forces;
       ss.support.balance.friction_use = use;
       SupportSearch search(p_.model_, ss);
       for (int n = 0; n < std::max(1, s_.max_paths) && !runs_ && budgetLeft(); ++n) {

@@ -24,6 +24,8 @@ const char* supportRuleText(SupportRule rule) {
       return "a support the joints cannot fix";
     case SupportRule::kBreakaway:
       return "breakaway (sliders that cannot break loose from rest)";
+    case SupportRule::kLaw:
+      return "the law's forces (no input keeps the contacts' roles)";
     case SupportRule::kBlocked:
       return "a stretch whose closed-loop run failed";
   }

@@ -67,6 +67,18 @@ bool SupportSearch::anchorFor(const JigPose& pose, const ContactSet& set, PivotA
                          geometry_.settings().min_sticking_cosine);
 }
 
+bool SupportSearch::restAt(const JigPose& pose, const ContactSet& set, SupportStep& out) {
+  if (!anchorFor(pose, set, out.anchor)) return false;
+  const Support sup = geometry_.check(pose, set);
+  if (!sup.valid) return false;
+  out.pose = pose;
+  out.set = set;
+  out.q = sup.q;
+  out.margin = sup.margin;
+  out.rest = true;
+  return true;
+}
+
 bool SupportSearch::stepTo(const SupportStep& from, const JigPose& pose, const ContactSet& set,
                            const PivotAnchor& anchor, SupportStep& out, bool backward) {
   if (!blocked_.empty() && blocked_.count(key(pose, set)) != 0) {

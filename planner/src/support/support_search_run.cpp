@@ -135,15 +135,7 @@ void SupportSearch::Run::seed(int t, const JigPose& pose) {
     }
   for (const ContactSet& set : sets) {
     SupportStep s;
-    if (!search_.anchorFor(pose, set, s.anchor)) continue;
-    const Support sup = geometry_.check(pose, set);
-    if (!sup.valid) continue;
-    s.pose = pose;
-    s.set = set;
-    s.q = sup.q;
-    s.margin = sup.margin;
-    s.rest = true;
-    push(t, s, 0.0, -1);
+    if (search_.restAt(pose, set, s)) push(t, s, 0.0, -1);
   }
 }
 

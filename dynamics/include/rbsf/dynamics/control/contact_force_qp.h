@@ -145,8 +145,24 @@ class ContactForceQp {
   double frictionUse() const { return use_; }
   /// \brief The accelerations dv/dt the last solve predicts for its input (a0 + B tau).
   VecQ predictedAcceleration(const VecU& tau) const { return a0_ + B_ * tau; }
+  /// \brief The last solve's breakaway shortfall pi (x m_o g).
+  double shortfall() const { return x_[layout_.shortfall()]; }
   /// \brief The QP's status at the last solve.
   QpStatus status() const { return qp_.status; }
+
+  /// \brief The input the law chooses at (q, v) for the contacts of `tick` when its demand is
+  ///        `feedforward` (a plan's input there; when empty, the input whose predicted motion
+  ///        is closest to `vdot` in the cost's metric, generalized forces per part weight,
+  ///        found on the mode's maps at the zero input): solve() with that demand, then
+  ///        solve() again with the input it chose as the demand, whose internal forces keep
+  ///        the rows where they can (a free contact's saturation depends on the demand).
+  ///        Allocation-free. \return the second solve()'s verdict.
+  bool solveForMotion(const VecQ& q, const VecQ& v, const ContactTick& tick, const VecQ& vdot,
+                      VecU& tau, const VecU& feedforward = VecU());
+  /// \brief The largest error of the last solve's predicted motion for input `tau` against
+  ///        `vdot`, per coordinate as a generalized force per part weight: M_cc |(a0 + B tau -
+  ///        vdot)_c| / (m_o g), moments per m_o g x 0.1 m (the cost's metric).
+  double motionError(const VecU& tau, const VecQ& vdot) const;
 
   const ContactForceSettings& settings() const { return settings_; }
   /// \brief The workspace of the contact geometry (its xi_hint seeds the closest points).
@@ -167,6 +183,9 @@ class ContactForceQp {
   class RowWriter;  ///< the QP's rows in order (contact_force_qp.cpp)
   /// \brief The QP's cost: the motion's error from `demand`, then rho, sigma and pi.
   void setCost(const VecQ& q, const VecU& demand);
+  /// \brief The input whose motion on the last prediction's maps is closest to `vdot` in the
+  ///        cost's metric (input_regularization keeps it unique), into `demand`.
+  void motionDemand(const VecQ& q, const VecQ& vdot, VecU& demand);
   /// \brief The rows of contact `i` in its role and mode; `c` is a row's work vector.
   void contactRows(RowWriter& w, int i, const VecQ& v, const ContactTick& tick, VecR& c) const;
 

@@ -1,30 +1,36 @@
 #pragma once
 /// \file
-/// \brief Simple turns: the part turned by one pivot, the way a cell engineer would turn it
-///        by hand, found before the general support search (support_search.h) is tried.
+/// \brief Simple turns: the part turned by as few pivots as the cell allows, the way a cell
+///        engineer would turn it by hand, found before the general support search
+///        (support_search.h) is tried.
 ///
-/// A simple turn has three kinds of run, each from rest to rest:
-///   1. optionally, a **rigid** run at the start: every touching tip sticks and the base
-///      turns (fingers may let go or touch first, at rest);
-///   2. a **pivot** about finger k: its tip keeps its point xi_k of the part at stroke l_k,
-///      the other touching tips slide, and the part angle psi, the base angle theta and the
-///      stroke l_k all change along the run. The touching fingers may change at a rest on
-///      the way (the pivot goes on about the same point);
-///   3. optionally, a **rigid** run at the end that turns the base onto the goal.
-/// The pivot's anchor fixes where it must end: the tip's world point on the goal pose fixes
-/// the stroke and the base angle (SupportGeometry::pivotOnto), so the pivot ends at that part
-/// angle and stroke, at any base angle from which a rigid run reaches the goal's.
+/// A simple turn is a chain of runs, each from rest to rest:
+///   - **rigid** runs: two or more tips stick and the base turns;
+///   - **pivots** about a finger k: its tip keeps its point xi_k of the part at stroke l_k,
+///     the other touching tips slide (at most `max_sliders`: by default one, every other
+///     finger lifted), and the part angle psi, the base angle theta and the stroke l_k all
+///     change along the run. One pivot is one run: it does not stop on the way (a slider
+///     that would turn back is a rest, and a rest ends the pivot);
+///   - between runs, at rest, fingers let go or touch and the sticking tips change: lift
+///     first, then break loose.
+/// The last pivot ends where its anchor puts the part on the goal: the tip's world point on
+/// the goal pose fixes the stroke and the base angle (SupportGeometry::pivotOnto), so the
+/// pivot ends at that part angle and stroke, then rests and a rigid run turns the base onto
+/// the goal's angle.
 ///
-/// Search: for each pivot finger touching at the start, weighted A* over a lattice of
-/// (psi, theta, l_k, touching fingers) with steps `angle_step` and `stroke_step`, seeded
-/// with the start and every base angle the start's rigid runs reach. Moves are the 26
-/// lattice neighbours and the switches of touching fingers at rest, each taken when its end
-/// support is valid with the move's slip and, from rest, breaks away
-/// (SupportSearch::stepTo). Cost and heuristic are the support search's (metres over
-/// `length_scale`, radians as they are, weighted by the margin; `switch_cost` a switch). A
-/// node within half a step of the pivot's end is joined to it by a straight pivot and then
-/// to the goal by a rigid run. Of the paths found (one per pivot finger) the one with the
-/// fewest phase runs, then the shortest, is kept.
+/// Search: weighted A* over support states kept one per lattice cell of (psi, theta, X, Y)
+/// with steps `angle_step` and `xy_step`, the contact set and the pivots so far, from the
+/// start at rest on every valid set of its placed fingers. Moves: a pivot's 26 lattice
+/// neighbours in (psi, theta, l_k) (`stroke_step`), a rigid run's base step, and the
+/// switches of contact set at rest (a new pivot set starts a pivot: at most `max_pivots`).
+/// Each is taken when its end support is valid with the move's slip and, from rest, breaks
+/// away (SupportSearch::stepTo: the balance and the contact-force law's own check). Cost:
+/// the support search's (metres over `length_scale`, radians as they are, weighted by the
+/// margin), `switch_cost` a switch and `pivot_cost` a pivot; heuristic: the world pose's
+/// distance to the goal. The pivots are deepened one at a time (a search with at most 1,
+/// then 2, ...), so the path found has the fewest pivots; among the paths found within
+/// `search_on` times the expansions of the first, the one with the fewest phase runs, then
+/// the shortest, is kept.
 ///
 /// Cells blocked in the SupportSearch are not entered here either. Deterministic: the same
 /// inputs give the same path, and a budget in expansions gives it on any machine where the
@@ -40,11 +46,22 @@ namespace rbsf::planner {
 /// \brief Settings of PivotTurnSearch (file comment).
 struct PivotTurnSettings {
   double angle_step = 3.75 * M_PI / 180;  ///< psi and theta lattice [rad]
-  double stroke_step = 0.015;             ///< the pivot's stroke lattice [m]
+  double stroke_step = 0.015;             ///< a pivot's stroke step [m]
+  double xy_step = 0.01;                  ///< the lattice of the part's X and Y [m]
   double heuristic_weight = 2.0;          ///< weighted A* (>= 1)
-  long max_expansions = 60000;            ///< lattice nodes expanded, every finger together
+  double pivot_cost = 1.0;                ///< added for each pivot, beside switch_cost
+  int max_pivots = 3;                     ///< pivots of a simple turn at most
+  /// \brief Sliding tips of a pivot at most: 1 lifts every other finger, so that the pivot's
+  ///        two tips (at different heights) let the finger forces steer their squeeze and
+  ///        pull the slider loose; a pivot with more sliders is taken only where the law's
+  ///        check (SupportSettings::law_check) passes at its start and along it.
+  int max_sliders = 1;
+  long max_expansions = 60000;  ///< lattice nodes expanded, every depth together
   double time_limit = 30.0;  ///< wall time [s] (infinity: none); the budget above is the machine's
 };
+
+/// \brief The number of pivots of a path: its runs whose set has exactly one sticking contact.
+int pivotRuns(const std::vector<SupportStep>& steps);
 
 /// \brief The search of the file comment; one per thread. Uses `search`'s geometry, steps,
 ///        blocked cells and cost settings.
@@ -53,8 +70,8 @@ class PivotTurnSearch {
   PivotTurnSearch(SupportSearch& search, PivotTurnSettings settings = PivotTurnSettings());
 
   /// \brief A simple turn from the part at rest at `start` with base angle `start_theta` to
-  ///        `goal`; not found (with the reason) when no pivot finger gives one within the
-  ///        budget. `cancel`, when set and true, stops the search.
+  ///        `goal`; not found (with the reason) when none is within the budget. `cancel`,
+  ///        when set and true, stops the search.
   SupportPath search(const Pose& start, double start_theta, const Pose& goal,
                      const std::atomic<bool>* cancel = nullptr);
 
@@ -65,7 +82,7 @@ class PivotTurnSearch {
   const PivotTurnSettings& settings() const { return settings_; }
 
  private:
-  /// \brief One search() in progress: its leads, lattice and best path, and its steps
+  /// \brief One search() in progress: its lattice, open list and best path, and its steps
   ///        (pivot_turn_search_run.h).
   class Run;
   /// \brief The rigid run from `from` (its set) to base angle `theta`, every angle_step at

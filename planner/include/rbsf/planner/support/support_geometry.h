@@ -16,10 +16,13 @@
 /// acos(min_normal_cosine) (sliding) or acos(min_sticking_cosine) (sticking: friction
 /// carries what the normal does not) from the finger's axis and a stroke inside its limits by
 /// `stroke_margin`; the retracted fingers clear the part; the contact set is balanced
-/// (margin >= 0) and, when `require_determined`, joint-determined.
+/// (margin >= 0) and, when `require_determined`, joint-determined; and, when `law_check`,
+/// the contact-force law keeps its roles there (role_feasibility.h): the sticking contacts
+/// S, the sliders + or - the way the move slips them (F at rest), the others L.
 
 #include <optional>
 
+#include "rbsf/dynamics/control/role_feasibility.h"
 #include "rbsf/dynamics/core/contact_balance.h"
 #include "rbsf/dynamics/core/model.h"
 #include "rbsf/dynamics/core/placement.h"
@@ -50,6 +53,16 @@ inline JigPose lerpPose(const JigPose& a, const JigPose& b, double s) {
 ///        and the angles in radians, as one Euclidean norm.
 double poseDistance(const JigPose& a, const JigPose& b, double length_scale);
 
+/// \brief A sliding contact slips in a move when it moves more than this along its tip;
+///        less leaves it stuck (SupportStep::rest) [m].
+constexpr double kSlipStep = 1e-4;
+
+/// \brief The roles (contact_roles.h) of `set` for m fingers in a move with slip `slip`
+///        (SupportGeometry::slipDirections; may be empty): sticking contacts S, a slider
+///        slipping more than kSlipStep + or - its way (else F: at rest it is stuck, not relied
+///        on), the others L.
+ContactRoles supportRoles(const ContactSet& set, const VecC& slip, int m);
+
 /// \brief The sticking finger's hold on the part during a pivot.
 struct PivotAnchor {
   int finger = -1;      ///< k
@@ -69,6 +82,10 @@ struct SupportSettings {
   ///        before any sticking contact slips (breaksAway()).
   bool require_breakaway = true;
   BalanceSettings balance;  ///< force margins
+  /// \brief Put every support and breakaway to the contact-force law too (file comment).
+  bool law_check = true;
+  ContactForceSettings law;       ///< the law's forces (FeedbackSettings::forces of the plan)
+  RoleFeasibilitySettings roles;  ///< what the law's answer must meet
 };
 
 /// \brief A support's configuration and verdict.
@@ -78,6 +95,7 @@ struct Support {
   VecQ q;               ///< the configuration (state_layout.h)
   ContactBalance balance;
   SupportRule refusal = SupportRule::kBalance;  ///< the first rule broken when not valid
+  RoleVerdict law;  ///< the law's answer (law_check; feasible when not checked)
 };
 
 /// \brief Builds and checks supports; one per thread (holds a ModelData).
@@ -118,6 +136,13 @@ class SupportGeometry {
   ///        once: the lighter ones give first and the heaviest stays stuck.
   bool breaksAway(const VecQ& q, const ContactSet& set, const VecC& slip);
 
+  /// \brief The contact-force law's answer (role_feasibility.h) for `set` at q with the slip
+  ///        `slip` (supportRoles) and the feed-forward `tau` (a plan's: the balance's input
+  ///        there; may be empty): a breakaway when `loose` is false and a slider slips, else
+  ///        a slide or a hold.
+  RoleVerdict lawCheck(const VecQ& q, const ContactSet& set, const VecC& slip, bool loose,
+                       const VecU& tau = VecU());
+
   /// \brief T_i^T (q1 - q0) per finger: the slip each contact sees moving from q0 to q1.
   VecC slipDirections(const VecQ& q0, const VecQ& q1);
 
@@ -142,6 +167,7 @@ class SupportGeometry {
   const RbsfModel& model_;
   SupportSettings settings_;
   ContactBalancer balancer_;
+  RoleFeasibility law_;
   ModelData data_;
 };
 

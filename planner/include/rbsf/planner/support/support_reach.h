@@ -10,7 +10,8 @@
 /// misses the part's underside (or meets it too steeply), a retracted tip that would touch
 /// the part, balance (the friction cones at the friction use and the normal-force floor),
 /// a support the joints alone cannot fix, a run whose sliders cannot break loose from rest,
-/// and a stretch blocked after its closed-loop run failed.
+/// a step whose roles the contact-force law cannot keep (role_feasibility.h), and a stretch
+/// blocked after its closed-loop run failed.
 
 #include <array>
 #include <string>
@@ -28,9 +29,10 @@ enum class SupportRule {
   kBalance,
   kUndetermined,
   kBreakaway,
+  kLaw,
   kBlocked,
 };
-inline constexpr int kSupportRules = 8;
+inline constexpr int kSupportRules = 9;
 
 /// \brief A short name of `rule` for messages ("the base's angle limits", "balance ...").
 const char* supportRuleText(SupportRule rule);

@@ -69,9 +69,6 @@ struct SupportStep {
   bool rest = false;
 };
 
-/// \brief A sliding contact slips in a move when it moves more than this along its tip;
-///        less leaves it stuck (SupportStep::rest) [m].
-constexpr double kSlipStep = 1e-4;
 /// \brief Whether some sliding contact of `set` slips more than kSlipStep in `slip`
 ///        (SupportGeometry::slipDirections).
 bool slidersSlip(const ContactSet& set, const VecC& slip);
@@ -142,6 +139,9 @@ class SupportSearch {
   /// \brief Cells blocked so far.
   std::size_t blockedCount() const { return blocked_.size(); }
 
+  /// \brief The part at rest at `pose` on `set` (a root of a search), into `out`; false
+  ///        when the support is not valid there or a pivot's finger does not hold the part.
+  bool restAt(const JigPose& pose, const ContactSet& set, SupportStep& out);
   /// \brief The anchor of a pivot set at `pose` (the tip where it touches); true without
   ///        a pivot.
   bool anchorFor(const JigPose& pose, const ContactSet& set, PivotAnchor& anchor);
