@@ -443,23 +443,24 @@ TEST(PlanReorientation, TheMainJobCertifiesItsTurnAndExitsZero) {
 }
 
 TEST(PlanReorientation, SimpleTurnsAreSearchedFirstWhenAskedForWithinTheBudget) {
-  // --simple-turns 0.6: the one-pivot -15 degree turn (one slider, the third finger lifted)
-  // is found and run first, within --max-expansions, which leaves no budget for the general
-  // search: the plan written is the simple turn's (its run does not yet end on the goal: exit
-  // 3), and every segment that slides a tip slides one, with another finger lifted (lift
-  // first, then break loose). A share outside (0, 1] is refused with exit 2, naming the option.
+  // --simple-turns 0.6: the -15 degree simple turn (pivots with one slider, the third finger
+  // lifted) is found and run first, within --max-expansions: its run ends on the goal, so the
+  // plan written is the simple turn's, exact (two trials cannot certify it: exit 4), and every
+  // segment that slides a tip slides one, with another finger lifted (lift first, then break
+  // loose). A share outside (0, 1] is refused with exit 2, naming the option.
   const std::string out = writeTemp("simple_turns.json", "");
   const Result r = run(kPlan + " --cell " + kCells +
                        "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --planner support"
-                       " --simple-turns 0.6 --time-limit 3600 --max-expansions 400 --quiet"
-                       " --trials 2 --out " +
+                       " --simple-turns 0.6 --time-limit 3600 --max-expansions 20000 --quiet"
+                       " --trials 2 --no-optimize --out " +
                        out);
-  ASSERT_EQ(r.status, 3) << r.out << r.err;
+  ASSERT_EQ(r.status, 4) << r.out << r.err;
   EXPECT_NE(r.out.find("support path: sticking forces within 0.60 of the friction cone"),
             std::string::npos)
       << r.out;
   const auto j = nlohmann::json::parse(slurp(out));
-  EXPECT_LE(j["propagations"].get<long>(), 401);
+  EXPECT_LE(j["propagations"].get<long>(), 20001);
+  EXPECT_EQ(j["status"], "exact");
   int sliding = 0;
   for (const auto& seg : j["segments"]) {
     const std::string roles = seg["contacts"].get<std::string>();

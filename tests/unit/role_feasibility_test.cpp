@@ -1,7 +1,7 @@
 // Can the law do this step here? (role_feasibility.h): the answer for a slider's breakaway
 // agrees with a closed-loop run of the law on the simulator from that configuration, on the
-// nominal plant and at both ends of the cell's static-friction draws, for three
-// configurations built for it; the support searches refuse the steps it refuses.
+// nominal plant and at both ends of the cell's static-friction draws, for five pivot starts
+// built for it; the support searches refuse the steps it refuses.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -160,6 +160,20 @@ TEST(RoleFeasibility, APivotWhosePullIsJustOutsideItsMarginStaysStuck) {
   expectOnEveryPlant(model, p, false, false);
 }
 
+TEST(RoleFeasibility, ASliderLevelWithThePivotStaysStuckHoweverTheLawPulls) {
+  // Fingers 1 and 3 at one height (the default placement tilted to -15 deg, finger 2
+  // lifted): the QP's predicted forces meet the pull, but the squeeze along the tips' line is
+  // horizontal, felt by no actuator, and the plant uses it to keep finger 1 inside its cone.
+  // The law says no, and the slider stays stuck on every plant.
+  const RbsfModel model(defaultCell());
+  const PivotStart p = pivotStart(model, -15.0, 0b101u);
+  EXPECT_EQ(rolesText(p.roles, 3)[1], 'L');
+  EXPECT_FALSE(p.verdict.feasible);
+  EXPECT_EQ(p.verdict.refusal, RoleRefusal::kBreakaway);
+  EXPECT_LE(p.verdict.shortfall, 1e-6);
+  expectOnEveryPlant(model, p, false, false);
+}
+
 TEST(RoleFeasibility, TheSupportSearchRefusesABreakawayTheBalanceAloneWouldTake) {
   // Three tips at base +10 deg, the pivot on finger 1, fingers 2 and 3 to slide the negative
   // way: the balance LP can pull both sliders (it steers every internal force); the law's
@@ -187,6 +201,30 @@ TEST(RoleFeasibility, TheSupportSearchRefusesABreakawayTheBalanceAloneWouldTake)
   ss.support.law_check = false;
   planner::SupportSearch balance_only(model, ss);
   EXPECT_TRUE(balance_only.geometry().breaksAway(p.q, set, slip));
+}
+
+TEST(RoleFeasibility, TheSearchRefusesAHandOverTheLawCannotHoldHalfway) {
+  // At the default placement tilted to -15 deg, from fingers 2 and 3 sticking to the pivot on
+  // finger 3 with finger 1 sliding: each set holds the part at rest, but halfway through the
+  // hand-over (all three touching, fingers 1 and 2 free) the law keeps the part only by
+  // moving it, so the search refuses the switch by the law's rule; without the law's check
+  // it takes it.
+  const RbsfModel model(defaultCell());
+  planner::SupportSearchSettings ss = planner::SupportPlannerSettings::defaultSearch();
+  JigPose p0 = JigPose::fromWorld(Pose{0.1, 0.4, 0.0}, 0.0);
+  p0.theta = -15.0 * M_PI / 180;
+  const ContactSet from{0b110u, 0b110u}, to{0b101u, 0b100u};
+  planner::SupportSearch search(model, ss);
+  planner::SupportStep rest, next;
+  ASSERT_TRUE(search.restAt(p0, from, rest));
+  ASSERT_TRUE(search.geometry().check(p0, to).valid);
+  planner::PivotAnchor anchor;
+  ASSERT_TRUE(search.anchorFor(p0, to, anchor));
+  EXPECT_FALSE(search.stepTo(rest, p0, to, anchor, next));
+  EXPECT_EQ(search.refusal(), planner::SupportRule::kLaw);
+  ss.support.law_check = false;
+  planner::SupportSearch balance_only(model, ss);
+  EXPECT_TRUE(balance_only.stepTo(rest, p0, to, anchor, next));
 }
 
 }  // namespace

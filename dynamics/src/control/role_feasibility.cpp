@@ -1,6 +1,9 @@
 #include "rbsf/dynamics/control/role_feasibility.h"
 
+#include <Eigen/SVD>
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace rbsf {
 
@@ -18,6 +21,60 @@ const char* toString(RoleRefusal r) {
       return "motion";
   }
   return "rows";
+}
+
+bool RoleFeasibility::plantHoldsStuck(const ContactRoles& roles) const {
+  const int m = model_.numFingers();
+  const ModelData& d = qp_.contactData();
+  const VecC& fn = qp_.normalForces();
+  const VecC& ft = qp_.tangentialForces();
+  // The touching contacts' force columns over every coordinate: a combination z with
+  // W z = 0 is felt by no actuator and not by the part.
+  int k = 0;
+  std::array<int, kMaxFingers> finger{};
+  for (int i = 0; i < m; ++i)
+    if (roles[i] != ContactRole::kLifted && fn[i] > 0.0) finger[k++] = i;
+  const int n = static_cast<int>(d.G1.rows());
+  Eigen::MatrixXd W(n, 2 * k);
+  for (int c = 0; c < k; ++c) {
+    W.col(2 * c) = d.G1.col(finger[c]);
+    W.col(2 * c + 1) = d.T.col(finger[c]);
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(W, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  const double tol = 1e-9 * std::max(1.0, sv.size() > 0 ? sv[0] : 1.0);
+  int rank = 0;
+  for (int r = 0; r < sv.size(); ++r) rank += sv[r] > tol ? 1 : 0;
+  const int free_dims = 2 * k - rank;
+  if (free_dims == 0) return false;
+  // More than one free internal force: the plant has room enough; count it as holding.
+  if (free_dims > 1) return true;
+  const Eigen::VectorXd z = svd.matrixV().col(2 * k - 1);
+  // The interval of alpha for which lambda + alpha z keeps every touching contact pressed
+  // and inside its cone at the plant's highest friction (a slider still stuck: at the pull's
+  // breakaway x mu_s, what the pull is meant to exceed).
+  const Cell& cell = model_.cell();
+  const double mu_hi = cell.friction.mu_static * (1.0 + cell.uncertainty.static_friction);
+  const double mu_pull = cell.friction.mu_static * qp_.settings().breakaway;
+  double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+  auto keep = [&](double a, double b) {  // a + alpha b >= 0
+    if (std::abs(b) < 1e-12) {
+      if (a < 0.0) lo = hi + 1.0;
+    } else if (b > 0.0) {
+      lo = std::max(lo, -a / b);
+    } else {
+      hi = std::min(hi, -a / b);
+    }
+  };
+  for (int c = 0; c < k; ++c) {
+    const int i = finger[c];
+    const double mu = slipSign(roles[i]) != 0 ? mu_pull : mu_hi;
+    const double zn = z[2 * c], zt = z[2 * c + 1];
+    keep(fn[i], zn);
+    keep(mu * fn[i] - ft[i], mu * zn - zt);
+    keep(mu * fn[i] + ft[i], mu * zn + zt);
+  }
+  return lo <= hi;
 }
 
 RoleFeasibility::RoleFeasibility(const RbsfModel& model, const ContactForceSettings& forces,
@@ -57,7 +114,7 @@ RoleVerdict RoleFeasibility::check(const VecQ& q, const ContactRoles& roles, boo
   const bool solved = qp_.status() == QpStatus::kOptimal;
   if (!solved || out.violation > settings_.row_tolerance)
     out.refusal = RoleRefusal::kRows;
-  else if (out.shortfall > settings_.row_tolerance)
+  else if (out.shortfall > settings_.row_tolerance || (breakaway && plantHoldsStuck(roles)))
     out.refusal = RoleRefusal::kBreakaway;
   else if (settings_.robust && out.margin < 0.0)
     out.refusal = RoleRefusal::kMargin;

@@ -3,6 +3,7 @@
 // pivot_turn_search.h.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "pivot_turn_search_run.h"
@@ -101,10 +102,17 @@ std::vector<ContactSet> PivotTurnSearch::Run::restSets(const JigPose& pose,
 }
 
 void PivotTurnSearch::Run::seed() {
-  for (const ContactSet& set : restSets(p0_, geometry_.placedSet(p0_).touching)) {
+  // The part is placed on every finger that reaches it; a root that lifts some pays their
+  // travel, as a switch does.
+  const ContactSet placed = geometry_.placedSet(p0_);
+  const std::optional<VecQ> q_placed =
+      geometry_.configuration(p0_, ContactSet{placed.touching, placed.touching}, false);
+  for (const ContactSet& set : restSets(p0_, placed.touching)) {
     Node node;
     node.pivots = set.pivot() >= 0 ? 1 : 0;
-    if (search_.restAt(p0_, set, node.step)) push(node);
+    if (!search_.restAt(p0_, set, node.step)) continue;
+    if (q_placed) node.g = (node.step.q - *q_placed).tail(m_).cwiseAbs().sum() / ls_;
+    push(node);
   }
 }
 
@@ -294,7 +302,10 @@ void PivotTurnSearch::Run::switches(Node& next, int depth) {
     PivotAnchor anchor;
     if (!search_.anchorFor(s.pose, set, anchor)) continue;
     if (!search_.stepTo(s, s.pose, set, anchor, next.step)) continue;
-    next.g = node_.g + ss_.switch_cost + (set.pivot() >= 0 ? settings_.pivot_cost : 0.0);
+    // The fingers that move at rest take their time: their strokes' travel, as a length.
+    const double travel = (next.step.q - s.q).tail(m_).cwiseAbs().sum();
+    next.g =
+        node_.g + ss_.switch_cost + (set.pivot() >= 0 ? settings_.pivot_cost : 0.0) + travel / ls_;
     push(next);
   }
 }

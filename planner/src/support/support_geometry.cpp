@@ -142,6 +142,17 @@ bool SupportGeometry::breaksAway(const VecQ& q, const ContactSet& set, const Vec
   return !settings_.law_check || lawCheck(q, set, slip, false, b.tau).feasible;
 }
 
+bool SupportGeometry::handsOver(const JigPose& pose, const ContactSet& from, const VecQ& q_from,
+                                const ContactSet& to, const VecQ& q_to) {
+  if (!settings_.law_check) return true;
+  const ContactSet both{from.touching | to.touching, from.sticking & to.sticking};
+  const std::optional<VecQ> q = configuration(pose, both, false);
+  if (!q) return false;
+  const VecU tau =
+      0.5 * (balancer_.statics(q_from, from, data_).tau + balancer_.statics(q_to, to, data_).tau);
+  return lawCheck(*q, both, VecC(), true, tau).feasible;
+}
+
 RoleVerdict SupportGeometry::lawCheck(const VecQ& q, const ContactSet& set, const VecC& slip,
                                       bool loose, const VecU& tau) {
   return law_.check(q, supportRoles(set, slip, model_.numFingers()), loose, tau);

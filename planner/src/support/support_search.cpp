@@ -98,6 +98,10 @@ bool SupportSearch::stepTo(const SupportStep& from, const JigPose& pose, const C
     refusal_ = SupportRule::kBreakaway;
     return false;
   }
+  if (set != from.set && !geometry_.handsOver(pose, from.set, from.q, set, s.q)) {
+    refusal_ = SupportRule::kLaw;
+    return false;
+  }
   out.pose = pose;
   out.set = set;
   out.anchor = anchor;

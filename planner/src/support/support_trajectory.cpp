@@ -302,10 +302,11 @@ ContactRoles ReferenceBuilder::rolesOf(const Stretch& r) {
       roles[f] = ContactRole::kStick;
     else if (r.kind != Stretch::kRun)
       // A slider at rest is stuck but not relied on (its run's balance may hold it near its
-      // cone's edge), except in the final rest beside one other tip, where the part must
-      // come to rest and two sticking tips steer their squeeze (among three no actuator
-      // steers it).
-      roles[f] = r.end && r.set.count() <= 2 ? ContactRole::kStick : ContactRole::kFree;
+      // cone's edge), except beside one other tip in the final rest and while another
+      // finger moves alone, where the part must stay at rest and two sticking tips steer
+      // their squeeze (among three no actuator steers it).
+      roles[f] = (r.end || r.kind == Stretch::kFinger) && r.set.count() <= 2 ? ContactRole::kStick
+                                                                             : ContactRole::kFree;
     else
       roles[f] =
           data_.T.col(f).dot(v) < 0.0 ? ContactRole::kSlideNegative : ContactRole::kSlidePositive;

@@ -167,6 +167,8 @@ class ContactForceQp {
   const ContactForceSettings& settings() const { return settings_; }
   /// \brief The workspace of the contact geometry (its xi_hint seeds the closest points).
   ModelData& data() { return data_; }
+  /// \brief The contact geometry of the last solve (G1, T at its q).
+  const ModelData& contactData() const { return data_; }
   /// \brief The contact geometry at q (RbsfModel::updateContacts into data(), its closest
   ///        points searched from data().xi_hint), computed only when data() does not already
   ///        hold q's (the same bits): the law's classification of the tick's contacts and

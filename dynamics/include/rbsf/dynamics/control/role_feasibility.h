@@ -14,7 +14,14 @@
 ///     robust margin, every relied-on contact pressed above normal_floor m_o g;
 ///   - **breakaway** (the sliders still stuck, `sliders_loose` false): each planned slider
 ///     is pulled to breakaway mu_s f_n + pull_margin m_o g against its planned slip while
-///     the sticking contacts keep their cones: the plant's tips give in the planned order;
+///     the sticking contacts keep their cones: the plant's tips give in the planned order.
+///     And the plant cannot keep the slider stuck by an internal force no actuator feels
+///     (W z = 0 over the touching contacts' force columns: the squeeze of two tips at one
+///     height, or of three sticking tips): the plant's contact problem picks the least-norm
+///     forces inside the cones, so where some lambda + alpha z keeps every contact pressed and
+///     inside its cone (the slider's at breakaway mu_s, the others' at the highest drawn
+///     mu_s), the slider stays stuck however the law pulls. (Two or more such directions are
+///     counted as holding it.)
 ///   - **slide** (`sliders_loose` true): each slider slips with kinetic friction against
 ///     its planned slip, the others keep their roles.
 /// The answer is **yes** when the QP keeps every row (its violation sigma and breakaway
@@ -26,8 +33,8 @@
 /// can do. (At a breakaway the part starts to move as the slider gives: the pull is the
 /// question there, not the motion.)
 ///
-/// Units SI; frames: world frame B (docs/model.md). Allocation-free after construction;
-/// one per thread.
+/// Units SI; frames: world frame B (docs/model.md). Analysis-time code (a breakaway's
+/// internal forces are found by an SVD that allocates); one per thread.
 
 #include <cstdint>
 
@@ -81,7 +88,7 @@ class RoleFeasibility {
   ///        is refused as kRows): a breakaway when some role slides and `sliders_loose` is
   ///        false, a slide when it is true, a hold without sliders. `feedforward` (may be
   ///        empty) the plan's input there, the law's demand; `vdot` (may be empty: zero) the
-  ///        planned accelerations. Allocation-free.
+  ///        planned accelerations.
   RoleVerdict check(const VecQ& q, const ContactRoles& roles, bool sliders_loose,
                     const VecU& feedforward = VecU(), const VecQ& vdot = VecQ());
 
@@ -89,6 +96,11 @@ class RoleFeasibility {
   const ContactForceQp& qp() const { return qp_; }
 
  private:
+  /// \brief Whether, at the last solve's predicted forces, an internal force no actuator
+  ///        feels keeps every touching contact of `roles` pressed and inside its cone (file
+  ///        comment: the plant then keeps a planned slider stuck).
+  bool plantHoldsStuck(const ContactRoles& roles) const;
+
   const RbsfModel& model_;
   RoleFeasibilitySettings settings_;
   ContactForceQp qp_;

@@ -136,6 +136,14 @@ class SupportGeometry {
   ///        once: the lighter ones give first and the heaviest stays stuck.
   bool breaksAway(const VecQ& q, const ContactSet& set, const VecC& slip);
 
+  /// \brief Whether the law holds the part at rest at `pose` while the forces go from `from`'s
+  ///        (at configuration q_from) to `to`'s (at q_to): the hand-over's midpoint, every
+  ///        finger of either set touching, those in both that stick in both S, the others
+  ///        F (not relied on), the demand the mean of the two sets' static inputs. True
+  ///        without law_check.
+  bool handsOver(const JigPose& pose, const ContactSet& from, const VecQ& q_from,
+                 const ContactSet& to, const VecQ& q_to);
+
   /// \brief The contact-force law's answer (role_feasibility.h) for `set` at q with the slip
   ///        `slip` (supportRoles) and the feed-forward `tau` (a plan's: the balance's input
   ///        there; may be empty): a breakaway when `loose` is false and a slider slips, else
