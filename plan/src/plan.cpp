@@ -33,6 +33,25 @@ std::string Plan::phaseSequence() const {
   return seq;
 }
 
+std::string Plan::plannedPhases() const {
+  std::string seq;
+  for (const PlanSegment& s : segments) {
+    int sliders = 0, sticking = 0;
+    for (const ContactRole r : s.contacts) {
+      sliders += slipSign(r) != 0 ? 1 : 0;
+      sticking += r == ContactRole::kStick ? 1 : 0;
+    }
+    const char c = sliders == 0 ? 'C' : sticking == 1 ? 'P' : sticking == 0 ? 'U' : 'C';
+    if (seq.empty() || seq.back() != c) seq.push_back(c);
+  }
+  return seq;
+}
+
+int Plan::pivots() const {
+  const std::string seq = plannedPhases();
+  return static_cast<int>(std::count(seq.begin(), seq.end(), 'P'));
+}
+
 std::string filterPhaseRuns(const std::vector<std::pair<Phase, double>>& runs, double min_run) {
   // Merge equal neighbours first: a phase split over two segments is one run.
   std::vector<std::pair<char, double>> merged;

@@ -150,6 +150,11 @@ TEST(Summary, QuantilesInterpolateAndPropagateUnsolved) {
 TEST(Summary, RowsCountRunsAndSolved) {
   ExperimentLog log;
   mergeLog(log, parseLog(sampleLog("p", {0, 1, 2, 3}), "a"));
+  // Pivots of the solved runs only (an unsolved run's plan is no answer).
+  std::vector<LogRun>& runs = log.planners[0].runs;
+  runs[0].values["pivots INTEGER"] = "9";
+  runs[1].values["pivots INTEGER"] = "2";
+  runs[3].values["pivots INTEGER"] = "4";
   const std::vector<SummaryRow> rows = summarize({log});
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].planner, "KPIECE1");
@@ -157,6 +162,8 @@ TEST(Summary, RowsCountRunsAndSolved) {
   EXPECT_EQ(rows[0].solved, 2);  // runs 1 and 3
   EXPECT_DOUBLE_EQ(rows[0].time_q1, 0.5);
   EXPECT_TRUE(std::isinf(rows[0].time_q3));
+  EXPECT_DOUBLE_EQ(rows[0].pivots_median, 3.0);
+  EXPECT_NE(formatSummary(rows, false).find("pivots"), std::string::npos);
 }
 
 TEST(ProblemSuite, ShippedSuitesLoad) {

@@ -1,7 +1,8 @@
 // The plan's motion against the cell's motion limits (plan/plan_motion.h): peaks and
 // the final rest measured over the samples, the violation named in metres and degrees,
 // and a certificate that refuses a plan outside the limits whatever its trials; and its
-// holding (plan_holding.h): a part on two frictionless tips is not held by the joints.
+// holding (plan_holding.h): a part on two frictionless tips is not held by the joints; and
+// its planned phases and pivots, read from the segments' roles.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -115,6 +116,24 @@ TEST(PlanHolding, APartSlidingOnTwoFrictionlessTipsIsNotHeldByTheJointsAndTheJoi
       << verdictText(joint);
   // Part feedback may hold what the joints cannot: holding is not asked of it.
   EXPECT_FALSE(certify(model, plan, s).holding_required);
+}
+
+TEST(PlannedPhases, PivotsAreTheRunsOfSegmentsThatSlideBesideOneStickingTip) {
+  // The roles of a two-pivot turn with rests, hand-overs and a slider whose slip turns: the
+  // planned phases merge runs, count P runs as pivots, and do not flicker as the simulated
+  // phases do.
+  Plan plan;
+  for (const char* roles : {"LSS", "LFS", "L-S", "L+S", "L-S", "LFS", "LSS", "FSS", "SLS", "+LS",
+                            "+LS", "FFS", "++L", "SSS"}) {
+    PlanSegment seg;
+    seg.contacts = parseRoles(roles, 3, "roles");
+    seg.phase = Phase::kC;
+    plan.segments.push_back(seg);
+  }
+  EXPECT_EQ(plan.plannedPhases(), "CPCPCUC");
+  EXPECT_EQ(plan.pivots(), 2);
+  EXPECT_EQ(plan.phaseSequence(), "C");
+  EXPECT_EQ(Plan{}.pivots(), 0);
 }
 
 }  // namespace

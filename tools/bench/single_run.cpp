@@ -64,7 +64,7 @@ planner::PlannerSettings runSettings(const RunSpec& spec, const RunSettings& rs,
 /// rbsf's columns exist in every run (empty: NULL), also when no run solved.
 void addEmptyColumns(RunProperties& run, bool optimize) {
   for (const char* key : {"best goal distance REAL", "solution duration REAL", "path mismatch REAL",
-                          "expansions INTEGER"})
+                          "expansions INTEGER", "pivots INTEGER"})
     run[key] = "";
   if (optimize)
     for (const char* key :
@@ -162,6 +162,7 @@ void runSingle(const BenchProblem& bp, const RbsfModel& model, const RunSpec& sp
       return;
     run["solution duration REAL"] = num(plan.duration());
     run["path mismatch REAL"] = num(plan.path_mismatch);
+    run["pivots INTEGER"] = std::to_string(plan.pivots());
     if (!rs.optimize) return;
     // The product's refinement after the run (OMPL's time is the planner's alone): optimise,
     // certify the planner's plan and the refinement, keep the better (refine_and_certify.h).

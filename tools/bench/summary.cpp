@@ -51,7 +51,7 @@ std::vector<SummaryRow> summarize(const std::vector<ExperimentLog>& logs) {
       SummaryRow row;
       row.problem = log.name();
       row.planner = p.name.rfind("control_", 0) == 0 ? p.name.substr(8) : p.name;
-      std::vector<double> times, durations, reductions;
+      std::vector<double> times, durations, reductions, pivots;
       double props = 0.0, total_time = 0.0;
       for (const LogRun& r : p.runs) {
         ++row.runs;
@@ -63,6 +63,7 @@ std::vector<SummaryRow> summarize(const std::vector<ExperimentLog>& logs) {
         total_time += t;
         if (solved && value(r, "solution duration REAL"))
           durations.push_back(real(r, "solution duration REAL", 0.0));
+        if (solved && value(r, "pivots INTEGER")) pivots.push_back(real(r, "pivots INTEGER", 0.0));
         if (flag(r, "certified BOOLEAN")) ++row.certified;
         if (value(r, "optimizer success BOOLEAN")) {
           ++row.optimized;
@@ -75,11 +76,13 @@ std::vector<SummaryRow> summarize(const std::vector<ExperimentLog>& logs) {
       std::sort(times.begin(), times.end());
       std::sort(durations.begin(), durations.end());
       std::sort(reductions.begin(), reductions.end());
+      std::sort(pivots.begin(), pivots.end());
       row.time_q1 = quantile(times, 0.25);
       row.time_median = quantile(times, 0.5);
       row.time_q3 = quantile(times, 0.75);
       row.propagations_per_second = total_time > 0.0 ? props / total_time : 0.0;
       if (!durations.empty()) row.duration_median = quantile(durations, 0.5);
+      if (!pivots.empty()) row.pivots_median = quantile(pivots, 0.5);
       if (!reductions.empty()) row.cost_reduction_median = quantile(reductions, 0.5);
       rows.push_back(row);
     }
@@ -90,20 +93,23 @@ std::vector<SummaryRow> summarize(const std::vector<ExperimentLog>& logs) {
 std::string formatSummary(const std::vector<SummaryRow>& rows, bool optimize) {
   std::string out;
   char buf[256];
-  std::snprintf(buf, sizeof buf, "%-16s %-8s %9s %7s %8s %8s %8s %9s %12s", "problem", "planner",
-                "solved", "success", "t q1[s]", "t med[s]", "t q3[s]", "prop/s", "duration[s]");
+  std::snprintf(buf, sizeof buf, "%-16s %-8s %9s %7s %8s %8s %8s %9s %12s %7s", "problem",
+                "planner", "solved", "success", "t q1[s]", "t med[s]", "t q3[s]", "prop/s",
+                "duration[s]", "pivots");
   out += buf;
   if (optimize) out += "  opt ok  cost red.    cert.";
   out += '\n';
   for (const SummaryRow& r : rows) {
     char solved[32];
     std::snprintf(solved, sizeof solved, "%d/%d", r.solved, r.runs);
-    std::snprintf(buf, sizeof buf, "%-16s %-8s %9s %6.0f%% %8s %8s %8s %9.0f %12s",
+    char pivots[32] = "-";
+    if (r.pivots_median >= 0) std::snprintf(pivots, sizeof pivots, "%g", r.pivots_median);
+    std::snprintf(buf, sizeof buf, "%-16s %-8s %9s %6.0f%% %8s %8s %8s %9.0f %12s %7s",
                   r.problem.c_str(), r.planner.c_str(), solved,
                   r.runs ? 100.0 * r.solved / r.runs : 0.0, seconds(r.time_q1).c_str(),
                   seconds(r.time_median).c_str(), seconds(r.time_q3).c_str(),
                   r.propagations_per_second,
-                  r.duration_median >= 0 ? seconds(r.duration_median).c_str() : "-");
+                  r.duration_median >= 0 ? seconds(r.duration_median).c_str() : "-", pivots);
     out += buf;
     if (optimize) {
       char opt[32];

@@ -94,6 +94,8 @@ void PlanOutputs::write(const RbsfModel& model, const plan::PlanRecord& record,
                       " (angle modulo 360 deg)"},
           {"motion", format("%.3f s in %.0f segments", plan.duration(),
                             static_cast<double>(plan.segments.size()))},
+          {"pivots", format("%.0f (planned phases ", static_cast<double>(plan.pivots())) +
+                         plan.plannedPhases() + ")"},
           {"phase sequence", plan.phaseSequence()},
           {"search", plan.planner + format(", seed %.0f, %.0f propagations", plan.seed,
                                            static_cast<double>(plan.propagations))}};

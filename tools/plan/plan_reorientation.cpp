@@ -311,9 +311,10 @@ class EventPrinter {
     const plan::Plan& plan = e.plan;
     if (plan.status != plan::PlanStatus::kExact) return;
     std::printf(
-        "exact plan: %zu segments, %.3f s of motion, phases %s; planned in %.3f s, %llu "
-        "propagations\n",
-        plan.segments.size(), plan.duration(), plan.phaseSequence().c_str(), plan.planning_time,
+        "exact plan: %zu segments, %.3f s of motion, %d pivot%s (planned phases %s), phases %s; "
+        "planned in %.3f s, %llu propagations\n",
+        plan.segments.size(), plan.duration(), plan.pivots(), plan.pivots() == 1 ? "" : "s",
+        plan.plannedPhases().c_str(), plan.phaseSequence().c_str(), plan.planning_time,
         static_cast<unsigned long long>(plan.propagations));
   }
   void operator()(const planner::PlanRefined& e) const {

@@ -90,6 +90,13 @@ struct Plan {
   double duration() const;
   /// \brief The phase letters of the segments with runs merged, e.g. "CUCU".
   std::string phaseSequence() const;
+  /// \brief The phases the segments' roles plan (contact_roles.h), runs merged: P where some
+  ///        contact is planned to slide beside exactly one that sticks, U where some slides
+  ///        and none sticks, C elsewhere (at rest, rigid, hand-overs), e.g. "CPCPC". The
+  ///        simulated phases (phaseSequence) may flicker where a slider sticks for a step.
+  std::string plannedPhases() const;
+  /// \brief The pivots of the plan: the runs of P in plannedPhases().
+  int pivots() const;
 };
 
 /// \brief Steps counted per phase over one segment, in the order C, P, U (an unsupported

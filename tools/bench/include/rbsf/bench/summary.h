@@ -27,6 +27,7 @@ struct SummaryRow {
   double time_q1 = 0.0, time_median = 0.0, time_q3 = 0.0;  ///< [s], +inf: not reached
   double propagations_per_second = 0.0;
   double duration_median = -1.0;  ///< [s], < 0 when nothing solved
+  double pivots_median = -1.0;    ///< the solved plans' pivots (Plan::pivots), < 0: none
   int optimized = 0, optimizer_success = 0;
   int certified = 0;  ///< --optimize: runs whose kept plan is certified
   double cost_reduction_median = 0.0;
