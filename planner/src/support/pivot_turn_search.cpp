@@ -39,26 +39,29 @@ std::vector<SupportStep> PivotTurnSearch::finish(const SupportStep& at, double p
   std::vector<SupportStep> out = search_.straightPivot(at, psi, at.pose.theta, l);
   if (out.empty() || std::abs(out.back().pose.theta - theta) < 1e-9) return out;
   const SupportStep end = out.back();
-  // At rest, two or more tips stick (the most first) and the base turns onto the goal.
+  // At rest, two or more tips stick and the base turns onto the goal: of the sets that can,
+  // the one whose smallest margin along the way is largest (the run ends the plan, at rest).
   const std::uint32_t reachable =
       end.set.touching | search_.geometry().placedSet(end.pose).touching;
-  std::vector<ContactSet> sets;
+  std::vector<SupportStep> best;
+  double best_margin = -1.0;
   for (std::uint32_t t = reachable; t != 0; t = (t - 1) & reachable)
-    for (std::uint32_t st = t; st != 0; st = (st - 1) & t)
-      if (ContactSet::bitCount(st) >= 2) sets.push_back(ContactSet{t, st});
-  std::stable_sort(sets.begin(), sets.end(), [](const ContactSet& a, const ContactSet& b) {
-    return a.stickingCount() > b.stickingCount();
-  });
-  for (const ContactSet& set : sets) {
-    SupportStep held;
-    if (!search_.stepTo(end, end.pose, set, PivotAnchor{}, held)) continue;
-    const std::vector<SupportStep> run = rigidRun(held, theta);
-    if (run.empty()) continue;
-    out.push_back(held);
-    out.insert(out.end(), run.begin(), run.end());
-    return out;
-  }
-  return {};
+    for (std::uint32_t st = t; st != 0; st = (st - 1) & t) {
+      if (ContactSet::bitCount(st) < 2) continue;
+      SupportStep held;
+      if (!search_.stepTo(end, end.pose, ContactSet{t, st}, PivotAnchor{}, held)) continue;
+      std::vector<SupportStep> run = rigidRun(held, theta);
+      if (run.empty()) continue;
+      double margin = held.margin;
+      for (const SupportStep& w : run) margin = std::min(margin, w.margin);
+      if (margin <= best_margin) continue;
+      best_margin = margin;
+      run.insert(run.begin(), held);
+      best = std::move(run);
+    }
+  if (best.empty()) return {};
+  out.insert(out.end(), best.begin(), best.end());
+  return out;
 }
 
 }  // namespace rbsf::planner
