@@ -61,6 +61,9 @@ void ControlLaw::reset() {
   start_set_ = false;
   tick_.loose.fill(false);
   pulled_.fill(0.0);
+  stroke_offset_.fill(0.0);
+  reach_.fill(0.0);
+  joining_ = 0;
   num_pending_ = 0;
   dropped_ = 0;
   demand_.setZero();
@@ -317,6 +320,7 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
   demand_ = mid_.tau;
   demand_.noalias() -= schedule_.gain(knot) * e;
   demand_.noalias() -= schedule_.integralGain(knot) * xi;
+  joinDemand(t, knot, e);
   // The tick's contacts: the plan's roles; touching where the estimate's gap is closed
   // (within what the strokes' noise can tell), sliding where the estimator's contact memory
   // slides them or, on an exact state, where they slip.
@@ -335,6 +339,10 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
                               : schedule_.partFeedback() && state_.mode[i] == ContactMode::kSlide;
     tick.estimated[i] = slides ? ContactMode::kSlide : ContactMode::kStick;
   }
+  // A joining finger is a force the law sets, not a contact its forces are shared through:
+  // where it touches is not known, and the QP would move the others' load onto it.
+  for (int i = 0; i < m; ++i)
+    if ((schedule_.joining(knot) >> i) & 1u) tick.estimated[i] = ContactMode::kSeparated;
   // Planned sliders break loose once: seen slipping their way (the estimate or the exact
   // state), or, without the part's pose, after the law has pulled them for breakaway_time.
   // A loose slider keeps at least the slip floor, or the reference's own slip where slower.
@@ -381,6 +389,38 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
     clamped = clamped || std::abs(tau[j]) >= limit * (1.0 - 1e-9) || std::abs(demand_[j]) > limit;
   }
   return clamped;
+}
+
+void ControlLaw::joinDemand(double t, int knot, const VecX& e) {
+  const ContactReading& cr = schedule_.settings().contacts;
+  const Eigen::MatrixXd& K = schedule_.gain(knot);
+  const Cell& cell = schedule_.model().cell();
+  const std::uint32_t joining = schedule_.joining(knot);
+  const double dt = std::max(t - last_control_t_, 0.0);
+  const double fade = std::exp(-dt / cr.join_settle);
+  last_control_t_ = t;
+  for (int i = 0; i < schedule_.model().numFingers(); ++i) {
+    const int j = layout::fingerForce(i), k = layout::stroke(i);
+    if ((joining >> i) & 1u) {
+      // Servoed join_reach past the planned stroke, the push capped: the finger rises until
+      // it meets the part wherever the part is, and then presses it lightly.
+      stroke_offset_[i] = 0.0;
+      if (std::abs(mid_.v[k]) < 0.1 * cr.join_speed)
+        reach_[i] = std::min(reach_[i] + cr.join_speed * dt, cr.join_reach);
+      demand_[j] = std::min(demand_[j] + K(j, k) * reach_[i],
+                            mid_.tau[j] + cr.join_press * cell.object.mass * cell.gravity);
+      continue;
+    }
+    reach_[i] = 0.0;
+    const ContactRole r = schedule_.roles(knot)[i];
+    const bool relied = r == ContactRole::kStick || slipSign(r) != 0;
+    if ((joining_ >> i) & 1u)
+      stroke_offset_[i] = relied ? e[k] : 0.0;  // joined where it met the part
+    else
+      stroke_offset_[i] *= fade;
+    if (stroke_offset_[i] != 0.0) demand_.noalias() += K.col(k) * stroke_offset_[i];
+  }
+  joining_ = joining;
 }
 
 void ControlLaw::recordApplied(const VecU& tau) { applied_ = tau; }

@@ -61,6 +61,11 @@ void checkSettings(const FeedbackSettings& s) {
     throw InputError(
         "feedback settings: settle_time, horizon_tail, damping_ratio, integral_time and "
         "integral_limit must be >= 0");
+  if (!(s.contacts.join_reach >= 0.0 && s.contacts.join_press >= 0.0 &&
+        s.contacts.join_speed > 0.0 && s.contacts.join_settle > 0.0))
+    throw InputError(
+        "feedback settings: join_reach and join_press must be >= 0, join_speed and "
+        "join_settle > 0");
 }
 
 }  // namespace
@@ -116,6 +121,7 @@ FeedbackSchedule::FeedbackSchedule(const RbsfModel& model, ReferenceTrajectory t
     Bd_.push_back(h_ * lin.B + 0.5 * h_ * h_ * lin.A * lin.B);
     tangent.push_back(std::move(lin.tangent));
   }
+  markJoining();
   if (partFeedback())
     computeLqr(tangent);
   else
@@ -186,6 +192,20 @@ ContactModes FeedbackSchedule::plannedModes(double t, SimulatorWorkspace& ws,
     modes[i] = mode;
   }
   return modes;
+}
+
+void FeedbackSchedule::markJoining() {
+  joining_.assign(roles_.size(), 0u);
+  for (int i = 0; i < model_.numFingers(); ++i) {
+    bool from_lifted = false;  // the last role other than F was L
+    for (std::size_t k = 0; k < roles_.size(); ++k) {
+      const ContactRole r = roles_[k][i];
+      if (r != ContactRole::kFree)
+        from_lifted = r == ContactRole::kLifted;
+      else if (from_lifted)
+        joining_[k] |= 1u << i;
+    }
+  }
 }
 
 int FeedbackSchedule::knotAt(double t) const {

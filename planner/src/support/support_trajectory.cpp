@@ -242,8 +242,12 @@ void ReferenceBuilder::addHandover(std::size_t i) {
   const std::uint32_t leaves = from.touching & ~to.touching;
   const std::optional<VecQ> q_to = geometry_.configuration(pose, to, false);
   for (int f = 0; f < m_; ++f)
-    if ((joins >> f) & 1u)
-      addFingerMove(from, pose, f, cell.fingers[f].stroke_min, (*q_to)[layout::stroke(f)], i);
+    if ((joins >> f) & 1u) {
+      const double touch = (*q_to)[layout::stroke(f)];
+      addFingerMove(from, pose, f, cell.fingers[f].stroke_min, touch, i);
+      addFingerMove(from, pose, f, touch, touch, i);
+      stretches_.back().duration = timing_.touch_time;
+    }
   Stretch ramp;
   ramp.kind = Stretch::kRamp;
   ramp.set = ContactSet{from.touching | to.touching, from.sticking & to.sticking};
@@ -293,7 +297,7 @@ ContactRoles ReferenceBuilder::rolesOf(const Stretch& r) {
   for (int f = 0; f < m_; ++f) {
     const bool touching = r.set.touches(f);
     if (r.kind == Stretch::kFinger && f == r.finger)
-      roles[f] = r.to > r.from ? ContactRole::kFree : ContactRole::kLifted;
+      roles[f] = r.to >= r.from ? ContactRole::kFree : ContactRole::kLifted;
     else if (r.kind == Stretch::kRamp && touching && !(r.before.touches(f) && r.next.touches(f)))
       roles[f] = ContactRole::kFree;
     else if (!touching)

@@ -157,6 +157,15 @@ class ControlLaw {
   bool exact_state_ = false;
   ContactTick tick_;                          ///< the contacts' roles and state at the last tick
   std::array<double, kMaxFingers> pulled_{};  ///< how long it has been pulled loose [s]
+  /// \brief A joined finger's stroke error when it came to be relied on, fading
+  ///        (ContactReading::join_settle) [m].
+  std::array<double, kMaxFingers> stroke_offset_{};
+  std::array<double, kMaxFingers> reach_{};  ///< how far past its stroke a joining finger aims [m]
+  std::uint32_t joining_ = 0;                ///< the fingers joining at the last tick
+  double last_control_t_ = 0.0;
+  /// \brief The demand's joining terms (ContactReading::join_reach): a joining finger
+  ///        reaches past its stroke under a push cap; a joined one's error is taken off.
+  void joinDemand(double t, int knot, const VecX& e);
   /// \brief The error at the start of the run, blended out (start_blend): the reference is
   ///        joined where the cell starts, not snapped to.
   void blendStart(double t, VecX& e);

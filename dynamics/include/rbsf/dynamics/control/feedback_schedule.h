@@ -82,6 +82,22 @@ struct ContactReading {
   /// \brief A contact is a constraint of the planned mode only when the reference presses
   ///        it with at least this fraction of the part's weight.
   double min_normal_force = 0.02;
+  /// \brief A finger that rises to join the part (F after L, until it is relied on) is
+  ///        servoed this far past its planned stroke [m], so that it finds the part where
+  ///        the part is: on the joints alone a pivot's slip is not seen, and a finger that
+  ///        stops at the planned stroke is loaded by the hand-over before it touches.
+  double join_reach = 0.02;
+  /// \brief ... reaching out at this speed once its planned stroke has stopped [m/s], so
+  ///        that it meets the part slowly.
+  double join_speed = 0.02;
+  /// \brief ... and pushes at most this fraction of the part's weight above its
+  ///        feed-forward: it presses the part lightly, and carries the hand-over's ramp as a
+  ///        force.
+  double join_press = 0.01;
+  /// \brief Once relied on, a joined finger's stroke error at that moment is taken off its
+  ///        error and fades with this time constant [s]: the joints then carry the part back
+  ///        to the plan slowly instead of pulling the finger to its planned stroke at once.
+  double join_settle = 1.0;
 };
 
 /// \brief The LQR's weights: tolerated errors and inputs (Bryson's rule) and the integral
@@ -194,6 +210,9 @@ class FeedbackSchedule {
   ///        the simulator step from the reference (a touching contact sticks or slides the
   ///        way the reference slips it; an untouched one is lifted).
   const ContactRoles& roles(int k) const { return roles_[k]; }
+  /// \brief Bit i set: finger i rises to join the part at knot k (role F, and L the last
+  ///        role other than F before it; ContactReading::join_reach).
+  std::uint32_t joining(int k) const { return joining_[k]; }
   /// \brief The estimator's slip tolerance per contact at knot k (Simulator::step's
   ///        `slip_tolerance`) [m/s]: its raised one where the plan keeps the tip stuck (S),
   ///        the plant's elsewhere.
@@ -203,6 +222,7 @@ class FeedbackSchedule {
   void computeLqr(const std::vector<Eigen::MatrixXd>& tangent);
   void computePd();
   void computeKalman();
+  void markJoining();
   ContactModes plannedModes(double t, SimulatorWorkspace& ws, ContactRoles& roles) const;
 
   const RbsfModel& model_;
@@ -218,6 +238,7 @@ class FeedbackSchedule {
   std::vector<Eigen::MatrixXd> Ad_, Bd_, F_, K_, Ki_, Lj_, Lp_;
   std::vector<ContactModes> modes_;
   std::vector<ContactRoles> roles_;
+  std::vector<std::uint32_t> joining_;
   std::vector<VecC> estimator_slip_;
 };
 

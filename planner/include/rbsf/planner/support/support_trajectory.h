@@ -21,7 +21,8 @@
 ///
 /// **Hand-overs.** Between runs the part rests while the contact forces go from one set's
 /// to the next's: a finger that joins first rises (rest to rest) to the point where it
-/// touches, then the forces ramp over `handover_time`; a finger that leaves is first
+/// touches and rests there for `touch_time` (the law raises it on until it meets the part),
+/// then the forces ramp over `handover_time`; a finger that leaves is first
 /// unloaded by the ramp, then lowered to its stroke limit.
 ///
 /// **Feed-forward.** At each knot (every `knot_interval`) q, v and dv/dt of the motion
@@ -64,6 +65,10 @@ struct SupportTiming {
   /// \brief The part rests this long at the end under the last set's forces [s], so that the
   ///        plan, run closed loop, ends at rest.
   double end_rest = 0.3;
+  /// \brief A finger that joins rests at its planned stroke this long before the forces
+  ///        ramp onto it [s], while the law raises it until it meets the part
+  ///        (ContactReading::join_reach): the part may lie higher than planned.
+  double touch_time = 1.0;
 };
 
 /// \brief One stretch of the reference: a run or a hand-over.
