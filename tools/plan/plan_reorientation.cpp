@@ -199,9 +199,10 @@ void addStageOptions(CLI::App& app, Options& o) {
                  "per value in order, each in (0, 1] (default " +
                      defaultFrictionUses() + ")");
   app.add_option("--simple-turns", o.simple_turns,
-                 "support planner: first search turns of one pivot (pivot_turn_search.h) at "
-                 "these friction uses, each in (0, 1] (default: none; 0.82 finds the default "
-                 "cell's quarter turn, whose run does not yet hold the part)");
+                 "support planner: first search simple turns (pivot_turn_search.h: the fewest "
+                 "pivots, at most 3, each with one sliding tip) at these friction uses, each in "
+                 "(0, 1] (default: none; 0.6 certifies the default cell's +5, -15 and -20 "
+                 "degree turns)");
   app.add_option("--max-expansions", o.max_expansions,
                  "support planner: at most this many expansions over all its searches, a "
                  "budget that gives the same plan on any machine where the time limit does not "
