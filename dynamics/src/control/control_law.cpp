@@ -332,17 +332,16 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
   const FeedbackSettings& fs = schedule_.settings();
   const double touch = 10.0 * schedule_.sensing().joints.stroke_noise + 1e-5;
   tick.estimated.fill(ContactMode::kSeparated);
+  // A joining finger is a force the law sets, not a contact its forces are shared through:
+  // where it touches is not known, and the QP would move the others' load onto it.
+  const std::uint32_t joining = schedule_.joining(knot);
   for (int i = 0; i < m; ++i) {
-    if (data.contacts[i].gap > touch) continue;
+    if (data.contacts[i].gap > touch || ((joining >> i) & 1u)) continue;
     const bool slides = exact ? std::abs(data.T.col(i).dot(v_est_)) >
                                     10.0 * schedule_.simulator().settings().slip_tolerance
                               : schedule_.partFeedback() && state_.mode[i] == ContactMode::kSlide;
     tick.estimated[i] = slides ? ContactMode::kSlide : ContactMode::kStick;
   }
-  // A joining finger is a force the law sets, not a contact its forces are shared through:
-  // where it touches is not known, and the QP would move the others' load onto it.
-  for (int i = 0; i < m; ++i)
-    if ((schedule_.joining(knot) >> i) & 1u) tick.estimated[i] = ContactMode::kSeparated;
   // Planned sliders break loose once: seen slipping their way (the estimate or the exact
   // state), or, without the part's pose, after the law has pulled them for breakaway_time.
   // A loose slider keeps at least the slip floor, or the reference's own slip where slower.

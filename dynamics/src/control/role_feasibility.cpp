@@ -57,9 +57,10 @@ bool RoleFeasibility::plantHoldsStuck(const ContactRoles& roles) const {
   const double mu_hi = cell.friction.mu_static * (1.0 + cell.uncertainty.static_friction);
   const double mu_pull = cell.friction.mu_static * qp_.settings().breakaway;
   double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+  bool possible = true;                  // no row that alpha cannot mend
   auto keep = [&](double a, double b) {  // a + alpha b >= 0
     if (std::abs(b) < 1e-12) {
-      if (a < 0.0) lo = hi + 1.0;
+      possible = possible && a >= 0.0;
     } else if (b > 0.0) {
       lo = std::max(lo, -a / b);
     } else {
@@ -74,7 +75,7 @@ bool RoleFeasibility::plantHoldsStuck(const ContactRoles& roles) const {
     keep(mu * fn[i] - ft[i], mu * zn - zt);
     keep(mu * fn[i] + ft[i], mu * zn + zt);
   }
-  return lo <= hi;
+  return possible && lo <= hi;
 }
 
 RoleFeasibility::RoleFeasibility(const RbsfModel& model, const ContactForceSettings& forces,

@@ -111,7 +111,7 @@ void PivotTurnSearch::Run::seed() {
     Node node;
     node.pivots = set.pivot() >= 0 ? 1 : 0;
     if (!search_.restAt(p0_, set, node.step)) continue;
-    if (q_placed) node.g = (node.step.q - *q_placed).tail(m_).cwiseAbs().sum() / ls_;
+    if (q_placed) node.g = strokeTravel(*q_placed, node.step.q);
     push(node);
   }
 }
@@ -126,6 +126,10 @@ PivotTurnSearch::Run::CellKey PivotTurnSearch::Run::key(const Node& node) const 
                  static_cast<std::int32_t>(node.step.set.touching),
                  static_cast<std::int32_t>(node.step.set.sticking),
                  node.pivots};
+}
+
+double PivotTurnSearch::Run::strokeTravel(const VecQ& a, const VecQ& b) const {
+  return (b - a).tail(m_).cwiseAbs().sum() / ls_;
 }
 
 double PivotTurnSearch::Run::heuristic(const SupportStep& s) const {
@@ -302,10 +306,9 @@ void PivotTurnSearch::Run::switches(Node& next, int depth) {
     PivotAnchor anchor;
     if (!search_.anchorFor(s.pose, set, anchor)) continue;
     if (!search_.stepTo(s, s.pose, set, anchor, next.step)) continue;
-    // The fingers that move at rest take their time: their strokes' travel, as a length.
-    const double travel = (next.step.q - s.q).tail(m_).cwiseAbs().sum();
-    next.g =
-        node_.g + ss_.switch_cost + (set.pivot() >= 0 ? settings_.pivot_cost : 0.0) + travel / ls_;
+    // The fingers that move at rest take their time.
+    next.g = node_.g + ss_.switch_cost + (set.pivot() >= 0 ? settings_.pivot_cost : 0.0) +
+             strokeTravel(s.q, next.step.q);
     push(next);
   }
 }

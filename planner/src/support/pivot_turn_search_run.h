@@ -80,6 +80,9 @@ class PivotTurnSearch::Run {
   CellKey key(const Node& node) const;
   /// \brief The heuristic of `s`: its world pose's distance to the goal.
   double heuristic(const SupportStep& s) const;
+  /// \brief The cost of the fingers' moves at rest from a to b: their strokes' travel over
+  ///        the length scale.
+  double strokeTravel(const VecQ& a, const VecQ& b) const;
   /// \brief Adds `node` unless its lattice cell holds one as cheap, and opens it.
   void push(const Node& node);
   /// \brief Pops the best open node as the expansion at hand; false when a cheaper node of
