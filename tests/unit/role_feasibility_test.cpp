@@ -31,13 +31,15 @@ struct Breakaway {
 };
 
 /// The law (joint feedback, on the exact state) holding a stationary reference at q with
-/// `roles` and the feed-forward `tau`, on `plant`, for 0.5 s.
+/// `roles` and the feed-forward `tau`, on `plant`, for 0.5 s. With `v0`, the reference
+/// instead moves from q at v0 and slows evenly to rest at 1 s (the end of a run).
 Breakaway runLaw(const RbsfModel& model, const RbsfModel& plant, const VecQ& q,
-                 const ContactRoles& roles, const VecU& tau0) {
+                 const ContactRoles& roles, const VecU& tau0, const VecQ& v0 = VecQ()) {
   const int n = static_cast<int>(q.size());
+  const VecQ v_start = v0.size() == n ? v0 : VecQ::Zero(n);
   ReferenceTrajectory ref;
-  ref.addKnot(0.0, q, VecQ::Zero(n));
-  ref.addKnot(1.0, q, VecQ::Zero(n));
+  ref.addKnot(0.0, q, v_start);
+  ref.addKnot(1.0, q + 0.5 * v_start, VecQ::Zero(n));
   ref.addInputPiece(0.0, 1.0, tau0, VecU(), Phase::kP, roles);
   const SimulatorSettings settings;
   Sensing sensing = model.cell().sensing;
@@ -73,6 +75,8 @@ struct PivotStart {
   ContactRoles roles{};
   VecU feedforward;
   RoleVerdict verdict;
+  VecQ step;         ///< the pivot's first lattice step (configuration change)
+  VecU run_balance;  ///< the run's own input at rest there (its sliders frictionless)
 };
 
 PivotStart pivotStart(const RbsfModel& model, double theta_deg, std::uint32_t touching,
@@ -97,6 +101,9 @@ PivotStart pivotStart(const RbsfModel& model, double theta_deg, std::uint32_t to
   ContactBalancer balancer(model, ss.support.balance);
   ModelData data(model.numFingers());
   out.q = *q;
+  out.step = *q1 - *q;
+  const VecQ zero = VecQ::Zero(q->size());
+  out.run_balance = balancer.solve(*q, zero, zero, set, data).tau;
   out.feedforward = balancer.breakaway(*q, set, data, slip).tau;
   out.roles = planner::supportRoles(set, slip, model.numFingers());
   out.verdict = g.lawCheck(*q, set, slip, false, out.feedforward);
@@ -134,6 +141,28 @@ TEST(RoleFeasibility, ASliderOnTwoTipsBreaksLooseAsTheLawSays) {
   EXPECT_TRUE(p.verdict.feasible) << toString(p.verdict.refusal);
   EXPECT_EQ(rolesText(p.roles, 3)[0], 'L');
   expectOnEveryPlant(model, p, true, false);
+}
+
+TEST(RoleFeasibility, ASliderItsRunBringsToRestIsNotPulledLooseAgain) {
+  // The slider of the test above, stuck, while the reference ends its run (its own input,
+  // the planned slip under the loose sliders' floor and falling to rest). Stuck is where the
+  // plan brings it, so
+  // the law does not pull it loose (a pull there started the slide again and dropped parts
+  // at the ends of pivots); from rest (the test above) it does.
+  const RbsfModel model(defaultCell());
+  const PivotStart p = pivotStart(model, -15.0, 0b110u);
+  ModelData data(model.numFingers());
+  model.updateContacts(p.q, data);
+  const int slider = 1;
+  const double slip = data.T.col(slider).dot(p.step);
+  ASSERT_GT(std::abs(slip), 1e-4);
+  const double floor = ContactForceSettings().slip_speed;
+  const VecQ v0 = p.step * (0.05 * floor / std::abs(slip));  // slows from 5 % of the floor
+  for (const Cell& c : frictionEnds()) {
+    const Breakaway b = runLaw(model, RbsfModel(c), p.q, p.roles, p.run_balance, v0);
+    EXPECT_FALSE(b.slid) << "mu_s " << c.friction.mu_static;
+    EXPECT_FALSE(b.stuck_slipped) << "mu_s " << c.friction.mu_static;
+  }
 }
 
 TEST(RoleFeasibility, TheSameSliderBesideAThirdStuckTipCannotBreakLoose) {

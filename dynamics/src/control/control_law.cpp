@@ -359,15 +359,27 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
     const double slip = sgn * data.T.col(i).dot(v_est_);
     // On an exact state the simulator's own tolerance tells; an estimate needs a slip it can
     // tell from its noise.
+    const bool sees = exact || schedule_.partFeedback();
     const double seen = exact ? 10.0 * schedule_.simulator().settings().slip_tolerance
                               : fs.contacts.estimator_slip_speed;
-    if (exact || schedule_.partFeedback()) {
-      // Slipping either way: the prediction takes its kinetic friction against the slip.
-      const bool slipping =
-          std::abs(slip) > seen || (!exact && state_.mode[i] == ContactMode::kSlide);
+    // Slipping either way: the prediction takes its kinetic friction against the slip.
+    const bool slipping =
+        sees && (std::abs(slip) > seen || (!exact && state_.mode[i] == ContactMode::kSlide));
+    const double planned = sgn * data.T.col(i).dot(at_.v);
+    // Where the reference slows the slider to rest (its slip under the floor and falling),
+    // the run is ending: seen stuck there, it is where the plan brings it, and a pull would
+    // start the slide again. It is a contact at rest not relied on, as in the rest after the
+    // run. (Unseen, it stays a slider: its prediction takes kinetic friction until the run
+    // ends.)
+    if (sees && !slipping && planned < floor && sgn * data.T.col(i).dot(mid_.v) < planned) {
+      tick.roles[i] = ContactRole::kFree;
+      tick.loose[i] = false;
+      pulled_[i] = 0.0;
+      continue;
+    }
+    if (sees) {
       // Stuck again: an exact state shows it; an estimate, where the reference slides the tip
       // faster than the estimate can tell and the estimate sees a fraction of that slip.
-      const double planned = sgn * data.T.col(i).dot(at_.v);
       const bool stuck =
           exact ? std::abs(slip) < 0.1 * seen : planned > seen && std::abs(slip) < 0.25 * planned;
       tick.loose[i] = slipping || (tick.loose[i] && !stuck);
@@ -377,7 +389,7 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
     }
     if (!tick.loose[i]) pulled_[i] += dt;
     // The floor holds where the reference itself slides this way at least that fast.
-    tick.slip_floor[i] = sgn * data.T.col(i).dot(at_.v) >= floor ? floor : 0.0;
+    tick.slip_floor[i] = planned >= floor ? floor : 0.0;
   }
   qp_.solve(q_est_, v_est_, tick, demand_, tau);
 
