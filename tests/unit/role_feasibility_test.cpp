@@ -146,9 +146,8 @@ TEST(RoleFeasibility, ASliderOnTwoTipsBreaksLooseAsTheLawSays) {
 TEST(RoleFeasibility, ASliderItsRunBringsToRestIsNotPulledLooseAgain) {
   // The slider of the test above, stuck, while the reference ends its run (its own input,
   // the planned slip under the loose sliders' floor and falling to rest). Stuck is where the
-  // plan brings it, so
-  // the law does not pull it loose (a pull there started the slide again and dropped parts
-  // at the ends of pivots); from rest (the test above) it does.
+  // plan brings it, so the law does not pull it loose (a pull there started the slide again
+  // and dropped parts at the ends of pivots); from rest (the test above) it does.
   const RbsfModel model(defaultCell());
   const PivotStart p = pivotStart(model, -15.0, 0b110u);
   ModelData data(model.numFingers());
