@@ -29,6 +29,7 @@
 
 #include "rbsf/dynamics/core/errors.h"
 #include "rbsf/dynamics/io/cell_file.h"
+#include "rbsf/planner/support/pivot_turn_search.h"
 #include "rbsf/planner/support/support_planner.h"
 #include "rbsf/planner/support/support_search.h"
 #include "rbsf/tools/cli_values.h"
@@ -42,9 +43,11 @@ using rbsf::planner::PivotAnchor;
 using rbsf::planner::SupportStep;
 
 constexpr double kDeg = M_PI / 180.0;
-constexpr double kAngleStep = 3.75 * kDeg;  // PivotTurnSettings' lattice
-constexpr double kStrokeStep = 0.015;
-constexpr double kXyStep = 0.01;
+/// The simple turns' lattice (PivotTurnSettings' defaults).
+const rbsf::planner::PivotTurnSettings kLattice;
+const double kAngleStep = kLattice.angle_step;
+const double kStrokeStep = kLattice.stroke_step;
+const double kXyStep = kLattice.xy_step;
 
 /// One state of the walk: its support and pivots so far.
 struct WalkNode {
@@ -150,7 +153,7 @@ void walk(rbsf::planner::SupportSearch& search, const rbsf::Pose& start, int dep
   std::printf("%ld states expanded (every one within %d pivots)\n", expansions, depth);
   for (const auto& [pivots, angles] : rests) {
     std::printf("after %d pivots, rests at world angles [deg]:", pivots);
-    for (const auto& [idx, count] : angles) std::printf(" %.2f", idx * 3.75);
+    for (const auto& [idx, count] : angles) std::printf(" %.2f", idx * kAngleStep / kDeg);
     std::printf("\n");
   }
 }
