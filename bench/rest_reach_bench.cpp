@@ -67,21 +67,6 @@ std::uint64_t cellOf(const WalkNode& n) {
          static_cast<std::uint64_t>(n.pivots) << 56;
 }
 
-/// Sets of two or more touching fingers within `reach`: all sticking, or one sticking and one
-/// sliding.
-std::vector<ContactSet> restSets(std::uint32_t reach, int m) {
-  std::vector<ContactSet> sets;
-  for (std::uint32_t t = reach; t != 0; t = (t - 1) & reach) {
-    const int n = ContactSet::bitCount(t);
-    if (n < 2) continue;
-    sets.push_back(ContactSet{t, t});
-    if (n != 2) continue;
-    for (int k = 0; k < m; ++k)
-      if ((t >> k) & 1u) sets.push_back(ContactSet{t, 1u << k});
-  }
-  return sets;
-}
-
 void walk(rbsf::planner::SupportSearch& search, const rbsf::Pose& start, int depth,
           const std::vector<double>& targets) {
   rbsf::planner::SupportGeometry& g = search.geometry();
@@ -95,7 +80,7 @@ void walk(rbsf::planner::SupportSearch& search, const rbsf::Pose& start, int dep
     nodes.push_back(n);
     open.push_back(static_cast<int>(nodes.size()) - 1);
   };
-  for (const ContactSet& set : restSets(g.placedSet(p0).touching, m)) {
+  for (const ContactSet& set : rbsf::planner::restSetsWithin(g.placedSet(p0).touching, m, 1)) {
     WalkNode n;
     n.pivots = set.pivot() >= 0 ? 1 : 0;
     if (search.restAt(p0, set, n.step)) push(n);
@@ -141,7 +126,8 @@ void walk(rbsf::planner::SupportSearch& search, const rbsf::Pose& start, int dep
         if (search.stepTo(s, pose, s.set, PivotAnchor{}, next.step)) push(next);
       }
     }
-    for (const ContactSet& set : restSets(s.set.touching | g.placedSet(s.pose).touching, m)) {
+    for (const ContactSet& set :
+         rbsf::planner::restSetsWithin(s.set.touching | g.placedSet(s.pose).touching, m, 1)) {
       if (set == s.set) continue;
       next.pivots = cur.pivots + (set.pivot() >= 0 ? 1 : 0);
       if (next.pivots > depth) continue;

@@ -16,6 +16,19 @@ int pivotRuns(const std::vector<SupportStep>& steps) {
   return pivots;
 }
 
+std::vector<ContactSet> restSetsWithin(std::uint32_t reach, int m, int max_sliders) {
+  std::vector<ContactSet> sets;
+  for (std::uint32_t t = reach; t != 0; t = (t - 1) & reach) {
+    const int n = ContactSet::bitCount(t);
+    if (n < 2) continue;
+    sets.push_back(ContactSet{t, t});
+    if (n - 1 > max_sliders) continue;
+    for (int k = 0; k < m; ++k)
+      if ((t >> k) & 1u) sets.push_back(ContactSet{t, 1u << k});
+  }
+  return sets;
+}
+
 PivotTurnSearch::PivotTurnSearch(SupportSearch& search, PivotTurnSettings settings)
     : search_(search), settings_(settings) {}
 

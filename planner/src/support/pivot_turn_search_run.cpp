@@ -88,17 +88,7 @@ SupportPath PivotTurnSearch::Run::run() {
 
 std::vector<ContactSet> PivotTurnSearch::Run::restSets(const JigPose& pose,
                                                        std::uint32_t touching) const {
-  const std::uint32_t reach = touching | geometry_.placedSet(pose).touching;
-  std::vector<ContactSet> sets;
-  for (std::uint32_t t = reach; t != 0; t = (t - 1) & reach) {
-    const int n = ContactSet::bitCount(t);
-    if (n < 2) continue;
-    sets.push_back(ContactSet{t, t});
-    if (n - 1 > settings_.max_sliders) continue;
-    for (int k = 0; k < m_; ++k)
-      if ((t >> k) & 1u) sets.push_back(ContactSet{t, 1u << k});
-  }
-  return sets;
+  return restSetsWithin(touching | geometry_.placedSet(pose).touching, m_, settings_.max_sliders);
 }
 
 void PivotTurnSearch::Run::seed() {

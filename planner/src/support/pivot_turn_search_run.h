@@ -67,9 +67,8 @@ class PivotTurnSearch::Run {
     kCancel,  ///< stop now with result_.message "stopped"
   };
 
-  /// \brief The sets a support at `pose` may switch to at rest from `touching` fingers (and
-  ///        those the placement rule reaches there): two or more touching, all sticking
-  ///        (rigid) or one sticking with at most max_sliders sliding (a pivot).
+  /// \brief restSetsWithin() the `touching` fingers and those the placement rule reaches at
+  ///        `pose`, with at most max_sliders sliding.
   std::vector<ContactSet> restSets(const JigPose& pose, std::uint32_t touching) const;
   /// \brief Roots: the start at rest on every valid set (restSets).
   void seed();

@@ -37,6 +37,7 @@
 /// time limit does not bind first. Analysis-time code (allocates).
 
 #include <atomic>
+#include <cstdint>
 #include <vector>
 
 #include "rbsf/planner/support/support_search.h"
@@ -62,6 +63,11 @@ struct PivotTurnSettings {
 
 /// \brief The number of pivots of a path: its runs whose set has exactly one sticking contact.
 int pivotRuns(const std::vector<SupportStep>& steps);
+
+/// \brief The sets a simple turn may switch to at rest among the fingers of `reach` (of m):
+///        two or more touching, all sticking (rigid) or one sticking with at most
+///        `max_sliders` sliding (a pivot).
+std::vector<ContactSet> restSetsWithin(std::uint32_t reach, int m, int max_sliders);
 
 /// \brief The search of the file comment; one per thread. Uses `search`'s geometry, steps,
 ///        blocked cells and cost settings.
