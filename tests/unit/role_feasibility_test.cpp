@@ -4,6 +4,8 @@
 // built for it; the support searches refuse the steps it refuses.
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
+
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -162,6 +164,41 @@ TEST(RoleFeasibility, ASliderItsRunBringsToRestIsNotPulledLooseAgain) {
     EXPECT_FALSE(b.slid) << "mu_s " << c.friction.mu_static;
     EXPECT_FALSE(b.stuck_slipped) << "mu_s " << c.friction.mu_static;
   }
+}
+
+TEST(RoleFeasibility, APivotsStuckTipDriftingByAStepsFrameChangeKeepsItsRole) {
+  // A time step's sticking tip, read on the exact state at the step's end, slips by the
+  // step's change of its frame (about 1e-5 m/s in a slow pivot). Read as a slip, the QP
+  // would take the pivot frictionless and move the forces by newtons at once (a pivot of a
+  // +60 deg turn dropped in the nominal run); the law's input must not notice it.
+  const RbsfModel model(defaultCell());
+  const PivotStart p = pivotStart(model, -15.0, 0b110u);
+  ASSERT_EQ(rolesText(p.roles, 3)[2], 'S');
+  const int n = static_cast<int>(p.q.size());
+  ReferenceTrajectory ref;
+  ref.addKnot(0.0, p.q, VecQ::Zero(n));
+  ref.addKnot(1.0, p.q, VecQ::Zero(n));
+  ref.addInputPiece(0.0, 1.0, p.run_balance, VecU(), Phase::kP, p.roles);
+  Sensing sensing = model.cell().sensing;
+  sensing.part_pose.present = false;
+  const FeedbackSchedule schedule(model, ref, sensing, SimulatorSettings());
+  ModelData data(model.numFingers());
+  model.updateContacts(p.q, data);
+  const double drift = 0.3 * schedule.settings().contacts.exact_slip_speed;
+  ASSERT_GT(drift, 10.0 * SimulatorSettings().slip_tolerance);  // over the plant's tolerance
+  // The least velocity with which the pivot's tip slips `drift` and the slider's tip neither
+  // slips nor leaves, nor the pivot's.
+  Eigen::MatrixXd A(4, n);
+  A << data.T.col(1).transpose(), data.T.col(2).transpose(), data.G1.col(1).transpose(),
+      data.G1.col(2).transpose();
+  const Eigen::Vector4d b(0.0, drift, 0.0, 0.0);
+  const VecQ v = A.transpose() * (A * A.transpose()).ldlt().solve(b);
+  ASSERT_NEAR(data.T.col(2).dot(v), drift, 1e-12);
+  VecU still, drifting;
+  ControlLaw(schedule).computeFromState(0.0, p.q, VecQ::Zero(n), still);
+  ControlLaw(schedule).computeFromState(0.0, p.q, v, drifting);
+  EXPECT_LT((drifting - still).cwiseAbs().maxCoeff(), 0.5)
+      << "still " << still.transpose() << "\ndrifting " << drifting.transpose();
 }
 
 TEST(RoleFeasibility, TheSameSliderBesideAThirdStuckTipCannotBreakLoose) {

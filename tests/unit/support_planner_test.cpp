@@ -9,6 +9,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -387,6 +388,42 @@ TEST(SupportTrajectory, ARunWhoseSplineLeavesTheJigRestsAroundTheIntervalInstead
     const Pose w{r.q[layout::kX], r.q[layout::kY], r.q[layout::kPhi]};
     EXPECT_LE(JigPose::fromWorld(w, r.q[layout::kTheta]).X, edge + 1e-9) << "at t = " << t;
   }
+}
+
+TEST(SupportTrajectory, ARunEndingOnATinyLastStepApproachesItsEndWithoutTurningBack) {
+  // A simple turn's finish can end a run with a step of a thousandth of a lattice step. The
+  // uniform spline gives that interval the time of a whole one and, with the tangent of the
+  // step before, bends past the end and back: a slider's slip reverses. The run's base angle
+  // must rise monotonically to its end, within its waypoints.
+  const RbsfModel& model = defaultModel();
+  SupportSearch search(model, searchSettings());
+  SupportGeometry& geometry = search.geometry();
+  const ContactSet held{0b111u, 0b111u};
+  const JigPose start = JigPose::fromWorld(kStart, 0.0);
+  const double end = 0.10 + 1e-4;
+  SupportPath path;
+  path.found = true;
+  for (const double theta : {0.0, 0.05, 0.10, end}) {
+    SupportStep s;
+    s.pose = start;
+    s.pose.theta = theta;
+    s.set = held;
+    const std::optional<VecQ> q = geometry.configuration(s.pose, held, false);
+    ASSERT_TRUE(q.has_value()) << "theta " << theta;
+    s.q = *q;
+    path.steps.push_back(s);
+  }
+  const ReferenceTrajectory ref = supportReference(model, geometry, path, {});
+  ReferenceSample r;
+  double last = -1.0;
+  for (double t = ref.startTime(); t <= ref.endTime(); t += 0.002) {
+    ref.sample(t, r);
+    EXPECT_GE(r.q[layout::kTheta], last - 1e-7) << "turns back at t = " << t;
+    EXPECT_LE(r.q[layout::kTheta], end + 1e-7) << "past the end at t = " << t;
+    last = r.q[layout::kTheta];
+  }
+  ref.sample(ref.endTime(), r);
+  EXPECT_NEAR(r.q[layout::kTheta], end, 1e-7) << "the run ends on the last step";
 }
 
 TEST(SupportPlanner, PathsWhoseRunsMissTheGoalAreBlockedAndTheLongestRunningIsKept) {

@@ -335,10 +335,15 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
   // A joining finger is a force the law sets, not a contact its forces are shared through:
   // where it touches is not known, and the QP would move the others' load onto it.
   const std::uint32_t joining = schedule_.joining(knot);
+  // On an exact state a contact the plan keeps stuck slides only above exact_slip_speed (a
+  // step's own drift is not a slip), the others above the plant's tolerance, as the estimator
+  // reads them.
+  const double tolerance = 10.0 * schedule_.simulator().settings().slip_tolerance;
   for (int i = 0; i < m; ++i) {
     if (data.contacts[i].gap > touch || ((joining >> i) & 1u)) continue;
-    const bool slides = exact ? std::abs(data.T.col(i).dot(v_est_)) >
-                                    10.0 * schedule_.simulator().settings().slip_tolerance
+    const double drift =
+        tick.roles[i] == ContactRole::kStick ? fs.contacts.exact_slip_speed : tolerance;
+    const bool slides = exact ? std::abs(data.T.col(i).dot(v_est_)) > drift
                               : schedule_.partFeedback() && state_.mode[i] == ContactMode::kSlide;
     tick.estimated[i] = slides ? ContactMode::kSlide : ContactMode::kStick;
   }
@@ -360,8 +365,7 @@ bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3
     // On an exact state the simulator's own tolerance tells; an estimate needs a slip it can
     // tell from its noise.
     const bool sees = exact || schedule_.partFeedback();
-    const double seen = exact ? 10.0 * schedule_.simulator().settings().slip_tolerance
-                              : fs.contacts.estimator_slip_speed;
+    const double seen = exact ? tolerance : fs.contacts.estimator_slip_speed;
     // Slipping either way: the prediction takes its kinetic friction against the slip.
     const bool slipping =
         sees && (std::abs(slip) > seen || (!exact && state_.mode[i] == ContactMode::kSlide));

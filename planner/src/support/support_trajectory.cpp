@@ -198,7 +198,31 @@ void ReferenceBuilder::addRun(std::size_t a, std::size_t b) {
   r.anchor = first.anchor;
   r.first_step = a;
   r.last_step = b;
-  for (std::size_t k = a; k <= b; ++k) r.points.push_back(runCoordinates(path_.steps[k]));
+  // A waypoint next to the one before it, in every coordinate within a tenth of the run's
+  // largest step in that coordinate, is merged into it: the uniform spline would give the
+  // short interval the time of a long one and bend past the waypoint and back (a slider's slip
+  // reversed at the end of its run). The merged pair keeps the later step, so the run ends
+  // where the path does.
+  std::vector<Eigen::VectorXd> all;
+  for (std::size_t k = a; k <= b; ++k) all.push_back(runCoordinates(path_.steps[k]));
+  Eigen::VectorXd largest = Eigen::VectorXd::Zero(all[0].size());
+  for (std::size_t k = 1; k < all.size(); ++k)
+    largest = largest.cwiseMax((all[k] - all[k - 1]).cwiseAbs());
+  std::vector<std::size_t> at;  // the step of each waypoint
+  for (std::size_t k = a; k <= b; ++k) {
+    const Eigen::VectorXd& c = all[k - a];
+    const bool near = !r.points.empty() &&
+                      ((c - r.points.back()).cwiseAbs().array() <= 0.1 * largest.array()).all();
+    if (near && r.points.size() > 1) {  // the later step replaces the one before it
+      r.points.back() = c;
+      at.back() = k;
+      continue;
+    }
+    if (near && k < b) continue;  // the run's first waypoint stays
+    r.points.push_back(c);
+    at.push_back(k);
+  }
+  if (r.points.size() < 2) return;  // a set held at one pose alone has no run
   // Lengths along the spline: the part's travel and turn, the base's, the strokes'.
   double travel = 0.0, turn = 0.0, base = 0.0, stroke = 0.0;
   const int fine = 8 * static_cast<int>(r.points.size());
@@ -207,12 +231,13 @@ void ReferenceBuilder::addRun(std::size_t a, std::size_t b) {
     const double s = static_cast<double>(k) / fine;
     const std::optional<VecQ> q = reach(r, s);
     if (!q) {
-      if (b == a + 1) throw SupportReferenceError(a, b);
-      const std::size_t left =
-          a + std::min(static_cast<std::size_t>(s * (b - a)), b - a - 1);  // interval's start
+      const std::size_t n = r.points.size();
+      if (n == 2) throw SupportReferenceError(a, b);
+      const std::size_t w = std::min(static_cast<std::size_t>(s * (n - 1)), n - 2);
+      const std::size_t left = at[w], right = at[w + 1];  // the interval's ends
       if (left > a) addRun(a, left);
-      addRun(left, left + 1);
-      if (b > left + 1) addRun(left + 1, b);
+      addRun(left, right);
+      if (b > right) addRun(right, b);
       return;
     }
     const VecQ dq = *q - prev;

@@ -76,6 +76,11 @@ struct ContactReading {
   /// \brief The estimator's model counts a contact the plan keeps stuck (S) sliding only
   ///        above this slip [m/s]; the others at the plant's slip tolerance.
   double estimator_slip_speed = 5e-3;
+  /// \brief On an exact state (the planner's nominal run) a contact the plan keeps stuck (S)
+  ///        counts sliding only above this slip [m/s]. A step's sticking contact, read at
+  ///        the step's end, slips by the step's change of its frame: about 1e-5 m/s in a
+  ///        pivot turning 0.2 rad/s.
+  double exact_slip_speed = 1e-4;
   /// \brief Without the part's pose the law takes a planned slider to have broken loose
   ///        after pulling it this long [s] (it cannot see the slip).
   double breakaway_time = 0.05;
