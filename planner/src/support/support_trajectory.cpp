@@ -198,11 +198,13 @@ void ReferenceBuilder::addRun(std::size_t a, std::size_t b) {
   r.anchor = first.anchor;
   r.first_step = a;
   r.last_step = b;
-  // A waypoint next to the one before it, in every coordinate within a tenth of the run's
-  // largest step in that coordinate, is merged into it: the uniform spline would give the
-  // short interval the time of a long one and bend past the waypoint and back (a slider's slip
-  // reversed at the end of its run). The merged pair keeps the later step, so the run ends
-  // where the path does.
+  // A remnant step (every coordinate within 1 % of the run's largest step in it: a finish
+  // onto the exact goal a hair past the lattice) merges into the waypoint before it. The
+  // uniform spline would give it a whole interval's time and, with the tangent of the step
+  // before, bend past the end and back, reversing a slider at its run's end. The pair keeps
+  // the later step, so the run ends where the path does. Short steps above 1 % keep their
+  // interval: their overshoot (7 % of the step before) is one the law has carried
+  // (docs/notes/2026-11-29-pivot-drift-and-remnant-steps.md).
   std::vector<Eigen::VectorXd> all;
   for (std::size_t k = a; k <= b; ++k) all.push_back(runCoordinates(path_.steps[k]));
   Eigen::VectorXd largest = Eigen::VectorXd::Zero(all[0].size());
@@ -212,7 +214,7 @@ void ReferenceBuilder::addRun(std::size_t a, std::size_t b) {
   for (std::size_t k = a; k <= b; ++k) {
     const Eigen::VectorXd& c = all[k - a];
     const bool near = !r.points.empty() &&
-                      ((c - r.points.back()).cwiseAbs().array() <= 0.1 * largest.array()).all();
+                      ((c - r.points.back()).cwiseAbs().array() <= 0.01 * largest.array()).all();
     if (near && r.points.size() > 1) {  // the later step replaces the one before it
       r.points.back() = c;
       at.back() = k;
