@@ -11,6 +11,7 @@
 #include <cmath>
 #include <optional>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "rbsf/dynamics/core/cell.h"
@@ -44,6 +45,26 @@ Vec2 partPoint(const RbsfModel& model, const VecQ& q, double xi) {
 }
 
 const Pose kStart{0.1, 0.40, 0.0};
+
+/// A found path of steps on `set`, each at `start` moved to one (X, theta) of `at`, with its
+/// configuration; a waypoint the jig does not reach is left out (callers check the count).
+SupportPath pathThrough(SupportGeometry& geometry, const JigPose& start, const ContactSet& set,
+                        const std::vector<std::pair<double, double>>& at) {
+  SupportPath path;
+  path.found = true;
+  for (const auto& [X, theta] : at) {
+    SupportStep s;
+    s.pose = start;
+    s.pose.X = X;
+    s.pose.theta = theta;
+    s.set = set;
+    const std::optional<VecQ> q = geometry.configuration(s.pose, set, false);
+    if (!q) continue;
+    s.q = *q;
+    path.steps.push_back(s);
+  }
+  return path;
+}
 const Pose kTurn15{0.1, 0.40, -15.0 * M_PI / 180};
 
 TEST(SupportGeometry, WorldAndJigPosesRoundTripAndAPivotKeepsItsTipOnItsPoint) {
@@ -359,18 +380,10 @@ TEST(SupportTrajectory, ARunWhoseSplineLeavesTheJigRestsAroundTheIntervalInstead
   // overshoots X by 0.074 x 2 cm = 1.5 mm in the second interval.
   const double edge = lo, inside = edge - 0.0005, step = 0.02;
   ASSERT_TRUE(reaches(inside - step));
-  SupportPath path;
-  path.found = true;
-  for (const auto& [X, theta] : {std::pair{inside - step, 0.0}, std::pair{inside, 0.0},
-                                 std::pair{inside, 0.05}, std::pair{inside, 0.10}}) {
-    SupportStep s;
-    s.pose = start;
-    s.pose.X = X;
-    s.pose.theta = theta;
-    s.set = slide;
-    s.q = *geometry.configuration(s.pose, slide, false);
-    path.steps.push_back(s);
-  }
+  const SupportPath path =
+      pathThrough(geometry, start, slide,
+                  {{inside - step, 0.0}, {inside, 0.0}, {inside, 0.05}, {inside, 0.10}});
+  ASSERT_EQ(path.steps.size(), 4u);
   std::vector<SupportRun> runs;
   const ReferenceTrajectory ref = supportReference(model, geometry, path, {}, &runs);
   std::vector<std::pair<std::size_t, std::size_t>> spans;
@@ -401,18 +414,9 @@ TEST(SupportTrajectory, ARunEndingOnATinyLastStepApproachesItsEndWithoutTurningB
   const ContactSet held{0b111u, 0b111u};
   const JigPose start = JigPose::fromWorld(kStart, 0.0);
   const double end = 0.10 + 1e-4;
-  SupportPath path;
-  path.found = true;
-  for (const double theta : {0.0, 0.05, 0.10, end}) {
-    SupportStep s;
-    s.pose = start;
-    s.pose.theta = theta;
-    s.set = held;
-    const std::optional<VecQ> q = geometry.configuration(s.pose, held, false);
-    ASSERT_TRUE(q.has_value()) << "theta " << theta;
-    s.q = *q;
-    path.steps.push_back(s);
-  }
+  const SupportPath path = pathThrough(
+      geometry, start, held, {{start.X, 0.0}, {start.X, 0.05}, {start.X, 0.10}, {start.X, end}});
+  ASSERT_EQ(path.steps.size(), 4u) << "every waypoint on the jig";
   const ReferenceTrajectory ref = supportReference(model, geometry, path, {});
   ReferenceSample r;
   double last = -1.0;

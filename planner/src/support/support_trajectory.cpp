@@ -203,8 +203,8 @@ void ReferenceBuilder::addRun(std::size_t a, std::size_t b) {
   // uniform spline would give it a whole interval's time and, with the tangent of the step
   // before, bend past the end and back, reversing a slider at its run's end. The pair keeps
   // the later step, so the run ends where the path does. Short steps above 1 % keep their
-  // interval: their overshoot (7 % of the step before) is one the law has carried
-  // (docs/notes/2026-11-29-pivot-drift-and-remnant-steps.md).
+  // interval: merging those moved a certified plan's nominal run, and its trials failed,
+  // while their overshoot (7 % of the step before) is one the law carries.
   std::vector<Eigen::VectorXd> all;
   for (std::size_t k = a; k <= b; ++k) all.push_back(runCoordinates(path_.steps[k]));
   Eigen::VectorXd largest = Eigen::VectorXd::Zero(all[0].size());
@@ -224,7 +224,6 @@ void ReferenceBuilder::addRun(std::size_t a, std::size_t b) {
     r.points.push_back(c);
     at.push_back(k);
   }
-  if (r.points.size() < 2) return;  // a set held at one pose alone has no run
   // Lengths along the spline: the part's travel and turn, the base's, the strokes'.
   double travel = 0.0, turn = 0.0, base = 0.0, stroke = 0.0;
   const int fine = 8 * static_cast<int>(r.points.size());
