@@ -1,9 +1,12 @@
 #include "rbsf/plan/plan_holding.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "rbsf/dynamics/core/contact_balance.h"
+#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/plan.h"
 
 namespace rbsf::plan {
@@ -23,13 +26,31 @@ PlanHolding measureHolding(const RbsfModel& model, const Plan& plan, const Holdi
     h.free_time += length;
     if (length > h.longest_free) h.longest_free = length, h.longest_free_start = last_held;
   };
-  for (const TrajectorySample& sample : plan.samples) {
+  // Each sample's contact points in the part's frame, for the slips between samples.
+  const std::size_t N = plan.samples.size();
+  std::vector<std::array<Vec2, kMaxFingers>> points(N);
+  for (std::size_t k = 0; k < N; ++k) {
+    model.updateContacts(plan.samples[k].q, data);
+    const double phi = plan.samples[k].q[layout::kPhi];
+    for (int i = 0; i < m; ++i) points[k][i] = rotate(-phi, data.contacts[i].lever);
+  }
+  // The mean slip of contact i from sample a to sample b [m/s]: how far its point moved on
+  // the part.
+  auto meanSlip = [&](std::size_t a, std::size_t b, int i) {
+    const double dt = plan.samples[b].t - plan.samples[a].t;
+    return dt > 0.0 ? (points[b][i] - points[a][i]).norm() / dt : 0.0;
+  };
+  for (std::size_t k = 0; k < N; ++k) {
+    const TrajectorySample& sample = plan.samples[k];
     model.updateContacts(sample.q, data);
     ContactSet set;
     for (int i = 0; i < m; ++i) {
       if (!(sample.f_n[i] > s.touch_force)) continue;
       set.touching |= 1u << i;
-      if (std::abs(data.T.col(i).dot(sample.v)) <= s.slip_rate) set.sticking |= 1u << i;
+      const bool still = std::abs(data.T.col(i).dot(sample.v)) <= s.slip_rate;
+      const bool kept = (k == 0 || meanSlip(k - 1, k, i) <= s.slip_rate) &&
+                        (k + 1 == N || meanSlip(k, k + 1, i) <= s.slip_rate);
+      if (still || kept) set.sticking |= 1u << i;
     }
     const bool held = set.rows() >= 3 && balancer.determined(set, data);
     if (held) {

@@ -544,6 +544,36 @@ TEST(PlanReorientation, SupportPlannerWritesASlowJointFedBackPlanAndItsVerdict) 
   EXPECT_LT(std::abs(last[2].get<double>()), 1e-3);
 }
 
+TEST(PlanReorientation, TheFifteenDegreeTurnIsWrittenRefinedCertifiedAndEndsHeldStill) {
+  // The cheapest of the refinements README states: written, certified on the default
+  // certificate (64 trials), at most 0.7 of the planner's effort, and ending on the
+  // planner's end rest held still, so the law settles the part before the rest window.
+  const std::string out = writeTemp("refined15.json", "");
+  const Result r =
+      run(kPlan + " --cell " + kCells +
+          "default.yaml --start 0.1,0.40,0 --goal 0.1,0.40,-15deg --quiet --out " + out);
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("written: the optimised plan"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(slurp(out));
+  const auto& o = j["optimization"];
+  ASSERT_TRUE(o["chosen"].get<bool>()) << o.dump();
+  EXPECT_LE(o["cost_after"].get<double>(), 0.7 * o["cost_before"].get<double>());
+  const auto& c = j["certificate"];
+  EXPECT_TRUE(c["certified"].get<bool>());
+  EXPECT_EQ(c["trials"].get<int>(), 64);
+  EXPECT_EQ(c["successes"].get<int>(), 64);
+  const auto& samples = j["samples"];
+  const double end = samples.back()["t"].get<double>();
+  double still_since = end;
+  for (auto s = samples.rbegin(); s != samples.rend(); ++s) {
+    bool still = true;
+    for (const auto& x : (*s)["v"]) still = still && x.get<double>() == 0.0;
+    if (!still) break;
+    still_since = (*s)["t"].get<double>();
+  }
+  EXPECT_GE(end - still_since, 0.29) << "the plan's end rest (0.3 s) is not kept";
+}
+
 TEST(PlanReorientation, TheSupportSearchTakesItsFrictionUseAndLatticeFromTheOptions) {
   // At 0.45 of the cone (the first default) the 15 degree turn's path is found; asked for
   // 0.6 alone, on a finer lattice, the path found keeps within 0.6 and the search expands

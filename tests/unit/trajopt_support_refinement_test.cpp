@@ -7,9 +7,11 @@
 #include <cmath>
 
 #include "rbsf/plan/certificate.h"
+#include "rbsf/plan/plan_holding.h"
 #include "rbsf/planner/pipeline/refine_and_certify.h"
 #include "rbsf/planner/support/support_planner.h"
 #include "rbsf/trajopt/plan_refinement.h"
+#include "rbsf/trajopt/schedule.h"
 #include "test_support.h"
 #include "trajopt_support.h"
 
@@ -67,13 +69,13 @@ TEST(SupportRefinement, StickingForcesStayInTheFrictionUseConeAndItRunsAtLeastAs
     const plan::PlanSegment& seg = out.plan.segments[std::min(k, out.plan.segments.size() - 1)];
     ASSERT_TRUE(planned(seg.contacts));
     for (int i = 0; i < model.numFingers(); ++i) {
-      const ContactRole r = seg.contacts[i];
+      const rbsf::ContactRole r = seg.contacts[i];
       const double fn = out.plan.samples[k].f_n[i], ft = out.f_t[k][i];
-      if (r == ContactRole::kStick) {
+      if (r == rbsf::ContactRole::kStick) {
         ++sticking;
         EXPECT_LE(std::abs(ft), cone * fn * (1.0 + 1e-6) + 1e-6) << "knot " << k << " finger " << i;
       }
-      if (r == ContactRole::kStick || slipSign(r) != 0) {
+      if (r == rbsf::ContactRole::kStick || slipSign(r) != 0) {
         EXPECT_GE(fn, floor * (1.0 - 1e-6)) << "knot " << k << " finger " << i;
       }
     }
@@ -88,6 +90,72 @@ TEST(SupportRefinement, StickingForcesStayInTheFrictionUseConeAndItRunsAtLeastAs
       << planned.trials;
   EXPECT_EQ(refined.successes, refined.trials);
   EXPECT_TRUE(refined.motion.ok());
+}
+
+TEST(SupportRefinement, ThePlansEndRestStaysARestAsLongAsPlanned) {
+  const RbsfModel& model = test::defaultModel();
+  const Planned& in = supportTurn();
+  const ScheduleResult sr = buildSchedule(model, in.plan, 100, RunCut::kStatedRoles);
+  ASSERT_TRUE(sr.ok()) << sr.error;
+  const PhaseRun& rest = sr.schedule.runs.back();
+  ASSERT_TRUE(rest.at_rest);  // the planner ends its plans at rest (SupportTiming::end_rest)
+  bool moves = false;         // the pivot's run does not rest
+  for (const PhaseRun& run : sr.schedule.runs) moves = moves || !run.at_rest;
+  EXPECT_TRUE(moves);
+  auto endRest = [&](const plan::Plan& p) {  // how long the refined plan ends at rest [s]
+    double held = 0.0;
+    for (auto s = p.samples.rbegin(); s != p.samples.rend(); ++s) {
+      if (s->v.cwiseAbs().maxCoeff() > 0.0) return p.samples.back().t - s->t;
+      held = p.samples.back().t - s->t;
+    }
+    return held;
+  };
+  OptimizerSettings s = supportOptimizerSettings(base(), in.margins);
+  const OptimizedPlan kept = PlanOptimizer(model, s).optimize(in.plan);
+  ASSERT_TRUE(kept.success) << kept.summary.message;
+  // Every knot of the last run is still, at the goal; the interval before it brings the part
+  // to rest, so the held stretch is the run's whole planned duration.
+  EXPECT_GE(endRest(kept.plan), rest.duration * (1.0 - 1e-9));
+  const plan::PlanSample& last = kept.plan.samples.back();
+  EXPECT_NEAR(last.q[layout::kX], in.plan.goal.x, 1e-12);
+  EXPECT_NEAR(last.q[layout::kY], in.plan.goal.y, 1e-12);
+  // Without it the optimiser shortens the rest to brake into the goal.
+  s.keep_end_rest = false;
+  const OptimizedPlan shortened = PlanOptimizer(model, s).optimize(in.plan);
+  ASSERT_TRUE(shortened.success) << shortened.summary.message;
+  EXPECT_LT(endRest(shortened.plan), 0.5 * rest.duration);
+}
+
+TEST(SupportRefinement, ItsTipsHoldWhereTheirFootPointsStayThoughItsKnotVelocitiesSlip) {
+  // The collocation keeps a sticking tip on its material point at every knot, but its knot
+  // velocities carry slips of order h dv/dt (up to 6e-4 m/s in the 35 degree refinement).
+  // The holding check reads the points as well: knot velocities off by such a slip leave
+  // the refined plan held, while the same slip in the positions does not.
+  const RbsfModel& model = test::defaultModel();
+  const Planned& in = supportTurn();
+  const OptimizedPlan out =
+      PlanOptimizer(model, supportOptimizerSettings(base(), in.margins)).optimize(in.plan);
+  ASSERT_TRUE(out.success) << out.summary.message;
+  const plan::HoldingSettings hs;
+  ASSERT_TRUE(plan::measureHolding(model, out.plan, hs).ok());
+  const double slip = 5.0 * hs.slip_rate;  // [m/s] along the world x
+  plan::Plan fast = out.plan, moved = out.plan;
+  ModelData data(model.numFingers());
+  int read_sliding = 0;
+  for (std::size_t k = 0; k < fast.samples.size(); ++k) {
+    plan::PlanSample& smp = fast.samples[k];
+    smp.v[layout::kX] += slip;
+    moved.samples[k].v[layout::kX] += slip;
+    moved.samples[k].q[layout::kX] += slip * smp.t;
+    model.updateContacts(smp.q, data);
+    for (int i = 0; i < model.numFingers(); ++i)
+      read_sliding +=
+          smp.f_n[i] > hs.touch_force && std::abs(data.T.col(i).dot(smp.v)) > hs.slip_rate;
+  }
+  ASSERT_GT(read_sliding, 0) << "no velocity reads a slip: the test shows nothing";
+  EXPECT_TRUE(plan::measureHolding(model, fast, hs).ok())
+      << plan::holdingText(plan::measureHolding(model, fast, hs));
+  EXPECT_FALSE(plan::measureHolding(model, moved, hs).ok());
 }
 
 TEST(SupportRefinement, WithoutTheMarginsTheSameRefinementDropsThePart) {

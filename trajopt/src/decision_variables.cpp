@@ -21,6 +21,7 @@ DecisionVariables::DecisionVariables(const RbsfModel& model, const DecisionLayou
       normal_floor_(settings.normal_floor * model.cell().object.mass *
                     std::max(model.cell().gravity, 1.0)),
       motion_limits_(settings.motion_limits),
+      keep_end_rest_(settings.keep_end_rest),
       tube_position_(settings.tube_position),
       tube_angle_(settings.tube_angle) {
   const double final_phi = plan.samples.back().q[layout::kPhi];
@@ -84,6 +85,17 @@ void DecisionVariables::bounds(Eigen::VectorXd& lower, Eigen::VectorXd& upper) c
   for (int j = 0; j < layout_.runs(); ++j) {
     lower[layout_.duration(j)] = min_scale_ * schedule_.runs[j].duration;
     upper[layout_.duration(j)] = max_scale_ * schedule_.runs[j].duration;
+  }
+  // The plan's end rest stays a rest, as long as planned: the law settles the part there.
+  const PhaseRun& last = schedule_.runs.back();
+  if (keep_end_rest_ && last.at_rest) {
+    for (int k = last.first_interval; k < K; ++k) {
+      for (int a = 0; a < n; ++a) lower[layout_.v(k) + a] = upper[layout_.v(k) + a] = 0.0;
+      for (int a = 0; a < layout::kObjectDim; ++a)
+        lower[layout_.q(k) + a] = upper[layout_.q(k) + a] = goal[a];
+    }
+    const int j = layout_.runs() - 1;
+    lower[layout_.duration(j)] = std::max(lower[layout_.duration(j)], last.duration);
   }
 }
 

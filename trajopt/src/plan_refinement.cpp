@@ -64,6 +64,7 @@ OptimizerSettings supportOptimizerSettings(OptimizerSettings base, const plan::P
   base.min_slip_rate = support.min_slip_rate;
   base.motion_limits = true;
   base.least_norm = true;
+  base.keep_end_rest = true;
   base.tube_position = support.tube_position;
   base.tube_angle = support.tube_angle;
   base.duration_min_scale = support.duration_min_scale;

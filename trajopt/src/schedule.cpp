@@ -1,6 +1,7 @@
 #include "rbsf/trajopt/schedule.h"
 
 #include "rbsf/dynamics/core/rollout.h"
+#include "rbsf/dynamics/core/state_layout.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +13,11 @@
 namespace rbsf::trajopt {
 
 namespace {
+
+/// A run rests while the part moves at most this many times the cell's rest: a support
+/// plan's closed-loop run settles into its end rest at up to 5 mrad/s for 0.1 s (the -45
+/// degree plan), while its pivots and base turns move at 0.05 rad/s and more.
+constexpr double kSettling = 10.0;
 
 int strength(ContactRole r) { return static_cast<int>(r); }
 
@@ -264,6 +270,25 @@ ScheduleResult failure(std::string error) {
   return result;
 }
 
+// PhaseRun::at_rest of every run: the re-simulation's part speeds at the steps within it,
+// against kSettling x the cell's rest.
+void markRests(const MotionLimits& limits, Schedule& schedule) {
+  const SimulatedSteps& steps = schedule.steps;
+  std::size_t s = 0;
+  for (PhaseRun& run : schedule.runs) {
+    const double end = run.start + run.duration;
+    run.at_rest = true;
+    for (; s < steps.t.size() && steps.t[s] <= end + 1e-9; ++s) {
+      if (steps.t[s] < run.start - 1e-9) continue;
+      const VecQ& v = steps.v[s];
+      if (std::hypot(v[layout::kX], v[layout::kY]) > kSettling * limits.rest_speed ||
+          std::abs(v[layout::kPhi]) > kSettling * limits.rest_angular_speed)
+        run.at_rest = false;
+    }
+    if (s > 0) --s;  // the boundary step belongs to the next run too
+  }
+}
+
 }  // namespace
 
 ContactRole Schedule::knotRole(int knot, int i) const {
@@ -294,6 +319,7 @@ ScheduleResult buildSchedule(const RbsfModel& model, const plan::Plan& plan, int
     majorityRoles(m, runs.counts[j], runs.xi_start[j], runs.xi_end[j], run);
     agreeWithLetter(m, runs.counts[j], run);
   }
+  markRests(model.cell().motion_limits, schedule);
   if (intervals < 2 * R)
     return failure("settings.knots = " + std::to_string(intervals) +
                    " is fewer than 2 per phase run (" + std::to_string(R) + " runs)");

@@ -51,6 +51,15 @@ struct OptimizerSettings {
   ///        true converged 28 times against 26, but with the refiner's retry 2 refinements
   ///        passed a joint-tracking replay against 4, hence off by default.
   bool split_runs_by_contact_modes = false;
+  /// \brief true: where the plan ends on a run in which the part rests (PhaseRun::at_rest),
+  ///        that run stays a rest of at least its planned duration: every knot of it has
+  ///        v = 0 and the object at the goal, so the refined plan ends with the part held
+  ///        still (dv/dt = 0 at its last knots, by the collocation) for as long as the
+  ///        planner gave the law to settle. false: only the last knot is at rest, and a
+  ///        run may shrink to duration_min_scale (the -30 degree support plan's 0.33 s end
+  ///        rest became 0.15 s of braking, and 62 of 64 trials were still moving in the
+  ///        rest window).
+  bool keep_end_rest = false;
   /// \brief true: runs are cut where the plan's stated contact roles change and keep them
   ///        (schedule.h RunCut::kStatedRoles; support plans, whose roles are what the planner
   ///        checked); the plan must state every segment's roles. Overrides the split above.

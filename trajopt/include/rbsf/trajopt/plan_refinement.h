@@ -53,7 +53,8 @@ struct RefineSettings {
 ///        runs on the stated roles, the sticking forces within margins.friction_use of the
 ///        cone, relied-on normal forces above margins.normal_margin of the part's weight,
 ///        the slides kept one way (at least at `support.min_slip_rate`), the cell's motion
-///        limits, the least-norm internal forces and `support`'s tube and shortest runs.
+///        limits, the least-norm internal forces, the plan's end rest kept (keep_end_rest)
+///        and `support`'s tube and shortest runs.
 OptimizerSettings supportOptimizerSettings(OptimizerSettings base, const plan::PlanMargins& margins,
                                            const SupportRefinement& support = {});
 

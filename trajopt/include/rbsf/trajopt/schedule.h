@@ -37,6 +37,10 @@ struct PhaseRun {
   /// \brief The roles the plan states over the run (contact_roles.h); kUnplanned when the
   ///        plan does not state them.
   rbsf::ContactRoles planned{};
+  /// \brief The part rests throughout the run in the re-simulation: its speeds at every
+  ///        step within 10 x the cell's motion_limits rest (motion_limits.h), so that a
+  ///        closed-loop run settling into its end rest counts.
+  bool at_rest = false;
 };
 
 /// \brief The plan re-simulated step by step, as buildSchedule saw it (the initial guess
