@@ -20,8 +20,9 @@ struct OptimizerSettings;
 /// knot: the last interval; Schedule::forceRole), 0 where off; f_t free where it sticks,
 /// 0 otherwise (mu_k = 0, docs/model.md); q_0 = plan.q0, v_0 = 0
 /// (start at rest); object pose of q_N = the goal (x, y, phi; phi taken within pi of the
-/// plan's final angle), v_N = 0 (at rest at the end; with keep_end_rest, every knot of a
-/// last run the part rests in, whose duration is then at least the planned one); T_j within
+/// plan's final angle), v_N = 0 (at rest at the end; with keep_end_rest the object pose of
+/// every knot of a last run the part rests in, whose duration is then at least the planned
+/// one); T_j within
 /// [duration_min_scale, duration_max_scale] x the planned duration of run j. With
 /// normal_floor > 0, the f_n of a contact the run relies on (PhaseRun::relied) at least
 /// normal_floor x m_o g0. With motion_limits, the cell's motion limits (motion_limits.h) at
