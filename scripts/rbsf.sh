@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # The project's one entry script (see README "Quick start").
-#   scripts/rbsf.sh run       install what is missing, build Release, plan and certify the 180
+#   scripts/rbsf.sh run       install what is missing, build Release, plan and certify the -45
 #                             degree turn (exit status: plan-reorientation's verdict)
 #   scripts/rbsf.sh test      install what is missing, build Release, run the whole test suite
+#   scripts/rbsf.sh status    install what is missing, build Release, produce every planning
+#                             figure README's status states (scripts/status.py; --suites adds
+#                             the benchmark suites), about 10 minutes on 2 cores
 #   scripts/rbsf.sh sanitize  build with AddressSanitizer + UBSan and run the unit tests
 #   scripts/rbsf.sh tsan      build the controller facade's tests with ThreadSanitizer, run them
 #   scripts/rbsf.sh consumer  install build/ into build/install, build tests/consumer (every
@@ -79,6 +82,11 @@ case "$cmd" in
     configure_build build
     consumer
     ;;
+  status)
+    ./scripts/install-deps.sh
+    configure_build build
+    exec python3 scripts/status.py --build build "${@:2}"
+    ;;
   sanitize)
     # Only the binaries of the tests labelled unit (the tools and CLI tests are not run here),
     # at -O1: the instrumented -O3 build took 19 of CI's 46 minutes; -O1 builds in about 12
@@ -125,7 +133,7 @@ case "$cmd" in
     done
     ;;
   *)
-    echo "usage: scripts/rbsf.sh run|test|sanitize|tsan|consumer|fuzz" >&2
+    echo "usage: scripts/rbsf.sh run|test|status|sanitize|tsan|consumer|fuzz" >&2
     exit 2
     ;;
 esac
