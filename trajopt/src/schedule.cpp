@@ -24,20 +24,29 @@ int strength(ContactRole r) { return static_cast<int>(r); }
 // Wrapped difference b - a in (-pi, pi].
 double wrappedDelta(double a, double b) { return std::remainder(b - a, 2.0 * M_PI); }
 
+/// Mode counts of a segment or a run: [contact][ContactMode].
+using ModeCounts = std::array<std::array<int, 3>, kMaxFingers>;
+
 // The run's roles as the plan states them: S sticks; + and - slide the way the
 // re-simulation slid (its sign agrees with the role's on the plans the support planner
 // writes; the simulated foot points are what the collocation's xi continue); F sticks
 // but is not relied on (no normal floor: the plant holds such a light touch by friction,
-// and the part on two frictionless tips would not balance); L is off. The letter: C for two or more
-// sticking, P for one, U for none.
-void statedRoles(int m, const VecC& xi_start, const VecC& xi_end, PhaseRun& run) {
+// and the part on two frictionless tips would not balance), unless it is apart for most of
+// the run in the re-simulation (a finger still rising to join the part: the law reaches for
+// it past its planned stroke), then off; L is off. The letter: C for two or more sticking, P
+// for one, U for none.
+void statedRoles(int m, const ModeCounts& cnt, const VecC& xi_start, const VecC& xi_end,
+                 PhaseRun& run) {
   int sticking = 0;
   for (int i = 0; i < m; ++i) {
     const rbsf::ContactRole r = run.planned[i];
     const double d = wrappedDelta(xi_start[i], xi_end[i]);
-    run.role[i] = r == rbsf::ContactRole::kLifted ? ContactRole::kOff
-                  : slipSign(r) != 0              ? ContactRole::kSlide
-                                                  : ContactRole::kStick;
+    const int apart = cnt[i][static_cast<int>(ContactMode::kSeparated)];
+    const bool rising =
+        r == rbsf::ContactRole::kFree && 2 * apart > cnt[i][0] + cnt[i][1] + cnt[i][2];
+    run.role[i] = r == rbsf::ContactRole::kLifted || rising ? ContactRole::kOff
+                  : slipSign(r) != 0                        ? ContactRole::kSlide
+                                                            : ContactRole::kStick;
     run.relied[i] = r == rbsf::ContactRole::kStick || slipSign(r) != 0;
     const int sign = slipSign(r) == 0 ? 0 : (d > 1e-6 ? 1 : (d < -1e-6 ? -1 : 0));
     run.slide_direction[i] = sign;
@@ -46,9 +55,6 @@ void statedRoles(int m, const VecC& xi_start, const VecC& xi_end, PhaseRun& run)
   }
   run.phase = sticking >= 2 ? Phase::kC : (sticking == 1 ? Phase::kP : Phase::kU);
 }
-
-/// Mode counts of a segment or a run: [contact][ContactMode].
-using ModeCounts = std::array<std::array<int, 3>, kMaxFingers>;
 
 /// What the re-simulation tells of each segment besides the steps themselves.
 struct SegmentTally {
@@ -313,7 +319,7 @@ ScheduleResult buildSchedule(const RbsfModel& model, const plan::Plan& plan, int
   for (int j = 0; j < R; ++j) {
     PhaseRun& run = schedule.runs[j];
     if (stated) {
-      statedRoles(m, runs.xi_start[j], runs.xi_end[j], run);
+      statedRoles(m, runs.counts[j], runs.xi_start[j], runs.xi_end[j], run);
       continue;
     }
     majorityRoles(m, runs.counts[j], runs.xi_start[j], runs.xi_end[j], run);
