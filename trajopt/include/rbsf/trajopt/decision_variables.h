@@ -37,7 +37,8 @@ struct OptimizerSettings;
 /// that of the interval after it (impulse / duration, impacts included: the collocation integrates
 /// knot forces over those halves); tau the held tau of the segment the knot starts; xi the closest
 /// boundary points of the tips (unwrapped along the plan); then clipped into the bounds (a force
-/// where the schedule has the contact off becomes 0). Why the means: against forces sampled at the
+/// where the schedule has the contact off becomes 0) and each f_t into the cone
+/// |f_t| <= cone_margin mu_s f_n. Why the means: against forces sampled at the
 /// knots with f_t = 0, they made the median of the object's velocity defects at the guess 4-40
 /// times smaller on the default problems (measured under the trapezoidal rule,
 /// docs/optimiser.md).
@@ -67,6 +68,7 @@ class DecisionVariables {
   double normal_floor_;  ///< [N]
   bool motion_limits_;
   bool keep_end_rest_;                 ///< OptimizerSettings::keep_end_rest
+  double cone_;                        ///< OptimizerSettings::cone_margin
   double tube_position_, tube_angle_;  ///< [m], [rad]; 0: no tube
   Eigen::VectorXd planned_;            ///< plannedGuess()
   double goal_phi_;
