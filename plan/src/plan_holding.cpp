@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "rbsf/dynamics/core/contact_balance.h"
-#include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/plan.h"
 
 namespace rbsf::plan {
@@ -31,8 +30,7 @@ PlanHolding measureHolding(const RbsfModel& model, const Plan& plan, const Holdi
   std::vector<std::array<Vec2, kMaxFingers>> points(N);
   for (std::size_t k = 0; k < N; ++k) {
     model.updateContacts(plan.samples[k].q, data);
-    const double phi = plan.samples[k].q[layout::kPhi];
-    for (int i = 0; i < m; ++i) points[k][i] = rotate(-phi, data.contacts[i].lever);
+    for (int i = 0; i < m; ++i) points[k][i] = model.shape().point(data.contacts[i].xi);
   }
   // The mean slip of contact i from sample a to sample b [m/s]: how far its point moved on
   // the part.

@@ -180,7 +180,7 @@ TEST(SupportRefinement, ItsTipsHoldWhereTheirFootPointsStayThoughItsKnotVelociti
   EXPECT_FALSE(plan::measureHolding(model, moved, hs).ok());
 }
 
-TEST(SupportRefinement, AFingerRisingToJoinThePartIsOffWhileItRisesSoTheTurnSolvesInItsTube) {
+TEST(SupportRefinement, AFingerRisingToJoinThePartIsOffWhileItRisesSoTheTurnSolvesInsideTheTube) {
   // A simple turn states F for finger 1 from when it starts to rise until its hand-over; the
   // law raises it until it meets the part, seconds later. Kept on the part for the whole run,
   // the refinement had to touch the part where the planner's finger is 16 cm below it, outside
