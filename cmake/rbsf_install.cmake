@@ -1,8 +1,8 @@
 # The installed package: `cmake --install build --prefix P` puts the headers under
 # P/include/rbsf, the libraries under P/lib, the tools under P/bin and the CMake package
 # under P/lib/cmake/rbsf, so that find_package(rbsf [COMPONENTS ...]) (with P in
-# CMAKE_PREFIX_PATH) gives rbsf::dynamics, rbsf::plan, rbsf::planner, rbsf::trajopt and
-# rbsf::controller. Every path in it is relative to P: the tree may be moved.
+# CMAKE_PREFIX_PATH) gives rbsf::dynamics, rbsf::plan, rbsf::trajopt, rbsf::executor,
+# rbsf::planner and rbsf::controller. Every path in it is relative to P: the tree may be moved.
 include(CMakePackageConfigHelpers)
 set(RBSF_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/rbsf)
 
@@ -15,7 +15,7 @@ endif()
 # Libraries and their headers (one include/ folder per module), each module its own export
 # set (rbsf_<module>Targets.cmake), so that find_package(rbsf COMPONENTS ...) loads only
 # what was asked for (rbsfConfig.cmake.in).
-set(_rbsf_modules dynamics plan trajopt planner controller)
+set(_rbsf_modules dynamics plan trajopt executor planner controller)
 foreach(_module IN LISTS _rbsf_modules)
   install(TARGETS rbsf_${_module} EXPORT rbsf_${_module}Targets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}

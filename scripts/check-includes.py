@@ -30,6 +30,7 @@ MODULES = {
     "dynamics/io": "dynamics",
     "plan": "plan",
     "trajopt": "trajopt",
+    "executor": "executor",
     "planner/base": "planner",
     "planner/support": "planner",
     "planner/kinodynamic": "planner",
@@ -46,13 +47,14 @@ ALLOWED = {
     "dynamics/io": {"dynamics/core"},
     "plan": DYNAMICS,
     "trajopt": DYNAMICS | {"plan"},
+    "executor": DYNAMICS | {"plan"},
     "planner/base": DYNAMICS | {"plan"},
     "planner/support": DYNAMICS | {"plan", "planner/base"},
     "planner/kinodynamic": DYNAMICS | {"plan", "planner/base"},
     "planner/pipeline": DYNAMICS | {"plan", "trajopt"} | PLANNER - {"planner/pipeline"},
-    "controller": DYNAMICS | PLANNER | {"plan", "trajopt"},
-    "tools": DYNAMICS | PLANNER | {"plan", "trajopt"},
-    "bench": DYNAMICS | PLANNER | {"plan", "trajopt", "tools"},
+    "controller": DYNAMICS | PLANNER | {"plan", "trajopt", "executor"},
+    "tools": DYNAMICS | PLANNER | {"plan", "trajopt", "executor"},
+    "bench": DYNAMICS | PLANNER | {"plan", "trajopt", "executor", "tools"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.M)
 

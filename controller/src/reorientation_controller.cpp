@@ -8,11 +8,9 @@
 #include <utility>
 #include <variant>
 
-#include "rbsf/dynamics/control/control_law.h"
 #include "rbsf/dynamics/core/errors.h"
 #include "rbsf/plan/plan_fit.h"
 #include "rbsf/plan/plan_reference.h"
-#include "snapshot_slots.h"
 
 namespace rbsf::controller {
 
@@ -56,53 +54,24 @@ const char* toString(PlanOutcome outcome) {
   return "?";
 }
 
-namespace {
-
-/// \brief What a real-time reader sees: one plan's schedule (reference and gains), and
-///        the law the loop thread runs on it (its only mutable part).
-struct PublishedPlan {
-  PublishedPlan(std::uint64_t id_, const RbsfModel& model, const plan::Plan& plan,
-                const FeedbackSettings& feedback)
-      : id(id_),
-        duration(plan.duration()),
-        q0(plan.q0),
-        schedule(model, plan::makeReference(plan), plan::lawSensing(model.cell().sensing, plan),
-                 plan.simulator, feedback),
-        law(schedule) {}
-
-  std::uint64_t id;
-  double duration;
-  VecQ q0;
-  FeedbackSchedule schedule;
-  mutable ControlLaw law;  ///< the loop thread's alone (track, addPartPose)
-};
-
-}  // namespace
-
 struct ReorientationController::Impl {
-  Impl(Cell cell, const FeedbackSettings& feedback_settings)
-      : model(std::move(cell)), feedback(feedback_settings) {}
+  Impl(Cell cell, const FeedbackSettings& feedback_settings, const ExecutionLimits& limits)
+      : runner(std::move(cell), feedback_settings, limits),
+        model(runner.model()),
+        feedback(feedback_settings) {}
 
   void run(ReorientationRequest request);
-  /// \brief The loop thread meets plan `p`: a plan it has not met starts its law afresh.
-  void start(const PublishedPlan& p) noexcept {
-    if (p.id == tracked_id) return;
-    p.law.reset();
-    tracked_id = p.id;
-  }
   void finish(PlanOutcome outcome, std::string message, plan::PlanRecord record, double best,
               bool publish_it);
   /// \brief The pipeline's settings of `request` on this cell, with the facade's feedback.
   planner::PipelineSettings pipelineSettings(const ReorientationRequest& request) const;
 
-  const RbsfModel model;
+  executor::PlanRunner runner;  ///< the published plans and their execution
+  const RbsfModel& model;
   const FeedbackSettings feedback;
-  detail::SnapshotSlots<PublishedPlan> slots;
   std::atomic<ControllerStatus> status{ControllerStatus::kIdle};
   std::atomic<PlanOutcome> outcome{PlanOutcome::kNone};
   std::atomic<bool> cancel{false};
-  std::uint64_t next_id = 1;     // worker only (one at a time)
-  std::uint64_t tracked_id = 0;  // loop thread only: the plan whose law track() last ran
 
   std::mutex mutex;  // guards worker (the handle) and result; never taken by a sampler
   std::thread worker;
@@ -113,8 +82,13 @@ void ReorientationController::Impl::finish(PlanOutcome how, std::string message,
                                            plan::PlanRecord record, double best, bool publish_it) {
   std::uint64_t id = 0;
   if (publish_it) {
-    id = next_id++;
-    slots.publish(std::make_unique<const PublishedPlan>(id, model, record.plan, feedback));
+    try {
+      id = runner.publish(record.plan);
+    } catch (const InputError& e) {
+      how = PlanOutcome::kError;
+      message = std::string("the plan's schedule cannot be built: ") + e.what();
+      publish_it = false;
+    }
   }
   {
     const std::lock_guard<std::mutex> lock(mutex);
@@ -192,31 +166,22 @@ void ReorientationController::Impl::run(ReorientationRequest request) {
 
 bool ReorientationController::load(const plan::PlanRecord& record, std::string* why,
                                    bool accept_uncertified) {
-  auto refuse = [&](std::string text) {
-    if (why != nullptr) *why = std::move(text);
-    return false;
-  };
+  executor::LoadOptions options;
+  options.accept_uncertified = accept_uncertified;
+  return load(record, why, options);
+}
+
+bool ReorientationController::load(const plan::PlanRecord& record, std::string* why,
+                                   const executor::LoadOptions& options) {
   const std::lock_guard<std::mutex> lock(impl_->mutex);
-  if (impl_->status.load() == ControllerStatus::kPlanning)
-    return refuse("a request is planning: cancel() it and wait() first");
-  if (impl_->worker.joinable()) impl_->worker.join();  // finished: returns at once
-  const plan::Plan& plan = record.plan;
-  const plan::Certificate& certificate = record.certificate;
-  const std::string mismatch = plan::planCellMismatch(impl_->model, plan);
-  if (!mismatch.empty()) return refuse(mismatch);
-  if (!accept_uncertified && !certificate.certified)
-    return refuse(certificate.ran
-                      ? "the plan is not certified (" + plan::verdictText(certificate) + ")"
-                      : "the plan carries no certificate");
-  std::unique_ptr<const PublishedPlan> published;
-  try {
-    published =
-        std::make_unique<const PublishedPlan>(impl_->next_id, impl_->model, plan, impl_->feedback);
-  } catch (const InputError& e) {
-    return refuse(e.what());
+  if (impl_->status.load() == ControllerStatus::kPlanning) {
+    if (why != nullptr) *why = "a request is planning: cancel() it and wait() first";
+    return false;
   }
-  const std::uint64_t id = impl_->next_id++;
-  impl_->slots.publish(std::move(published));
+  if (impl_->worker.joinable()) impl_->worker.join();  // finished: returns at once
+  std::uint64_t id = 0;
+  if (!impl_->runner.load(record, why, options, &id)) return false;
+  const plan::Certificate& certificate = record.certificate;
   impl_->result.outcome = PlanOutcome::kLoaded;
   impl_->result.message = certificate.ran
                               ? "loaded; its certificate: " + plan::verdictText(certificate)
@@ -226,12 +191,18 @@ bool ReorientationController::load(const plan::PlanRecord& record, std::string* 
   impl_->result.plan_id = id;
   impl_->outcome.store(PlanOutcome::kLoaded);
   impl_->status.store(ControllerStatus::kReady);
-  if (why != nullptr) why->clear();
   return true;
 }
 
 bool ReorientationController::loadFile(const std::string& path, std::string* why,
                                        bool accept_uncertified) {
+  executor::LoadOptions options;
+  options.accept_uncertified = accept_uncertified;
+  return loadFile(path, why, options);
+}
+
+bool ReorientationController::loadFile(const std::string& path, std::string* why,
+                                       const executor::LoadOptions& options) {
   plan::PlanRecord record;
   try {
     record = plan::readPlanJson(path);
@@ -239,15 +210,17 @@ bool ReorientationController::loadFile(const std::string& path, std::string* why
     if (why != nullptr) *why = e.what();
     return false;
   }
-  return load(record, why, accept_uncertified);
+  return load(record, why, options);
 }
 
 ReorientationController::ReorientationController(const std::string& cell_file,
-                                                 const FeedbackSettings& feedback)
-    : ReorientationController(loadCell(cell_file), feedback) {}
+                                                 const FeedbackSettings& feedback,
+                                                 const ExecutionLimits& limits)
+    : ReorientationController(loadCell(cell_file), feedback, limits) {}
 
-ReorientationController::ReorientationController(Cell cell, const FeedbackSettings& feedback)
-    : impl_(std::make_unique<Impl>(std::move(cell), feedback)) {}
+ReorientationController::ReorientationController(Cell cell, const FeedbackSettings& feedback,
+                                                 const ExecutionLimits& limits)
+    : impl_(std::make_unique<Impl>(std::move(cell), feedback, limits)) {}
 
 ReorientationController::~ReorientationController() {
   cancel();
@@ -287,48 +260,48 @@ RequestResult ReorientationController::result() const {
   return impl_->result;
 }
 
+bool ReorientationController::resume(ReorientationRequest request) {
+  Pose part;
+  double theta = 0.0;
+  if (!impl_->runner.heldState(part, theta)) return false;
+  request.problem.start = part;
+  request.problem.start_theta = theta;
+  return plan(request);
+}
+
 bool ReorientationController::sample(double t, ReferenceSample& out,
                                      std::uint64_t* plan_id) const noexcept {
-  const detail::SnapshotSlots<PublishedPlan>::Reader reader(impl_->slots);
-  const PublishedPlan* p = reader.get();
-  if (p == nullptr) return false;
-  p->schedule.reference(std::min(t, p->duration), out);
-  if (plan_id != nullptr) *plan_id = p->id;
-  return true;
+  return impl_->runner.sample(t, out, plan_id);
 }
 
 bool ReorientationController::track(double t, const VecU& joints, VecU& tau,
                                     std::uint64_t* plan_id) noexcept {
-  const detail::SnapshotSlots<PublishedPlan>::Reader reader(impl_->slots);
-  const PublishedPlan* p = reader.get();
-  if (p == nullptr) return false;
-  if (joints.size() != impl_->model.controlDim()) return false;
-  impl_->start(*p);
-  p->law.compute(t, joints, tau);
-  if (plan_id != nullptr) *plan_id = p->id;
-  return true;
+  return impl_->runner.step(t, joints, tau, nullptr, plan_id);
+}
+
+bool ReorientationController::track(double t, const VecU& joints, VecU& tau,
+                                    ExecutionStatus& status, std::uint64_t* plan_id) noexcept {
+  return impl_->runner.step(t, joints, tau, &status, plan_id);
 }
 
 void ReorientationController::addPartPose(double stamp, const Pose& pose) noexcept {
-  const detail::SnapshotSlots<PublishedPlan>::Reader reader(impl_->slots);
-  const PublishedPlan* p = reader.get();
-  if (p == nullptr) return;
-  impl_->start(*p);
-  p->law.addPartPose(stamp, pose);
+  impl_->runner.addPartPose(stamp, pose);
 }
+
+void ReorientationController::start() noexcept { impl_->runner.start(); }
+
+void ReorientationController::hold() noexcept { impl_->runner.hold(); }
+
+bool ReorientationController::heldState(Pose& part, double& theta) const noexcept {
+  return impl_->runner.heldState(part, theta);
+}
+
+double ReorientationController::timeStep() const noexcept { return impl_->runner.timeStep(); }
 
 bool ReorientationController::publishedPlan(double& duration, VecQ& q0) const noexcept {
-  const detail::SnapshotSlots<PublishedPlan>::Reader reader(impl_->slots);
-  const PublishedPlan* p = reader.get();
-  if (p == nullptr) return false;
-  duration = p->duration;
-  q0 = p->q0;
-  return true;
+  return impl_->runner.publishedPlan(duration, q0);
 }
 
-std::uint64_t ReorientationController::planId() const noexcept {
-  const detail::SnapshotSlots<PublishedPlan>::Reader reader(impl_->slots);
-  return reader.get() == nullptr ? 0 : reader.get()->id;
-}
+std::uint64_t ReorientationController::planId() const noexcept { return impl_->runner.planId(); }
 
 }  // namespace rbsf::controller

@@ -150,6 +150,9 @@ PlanCell planCell(const Cell& cell) {
   c.part_mass = cell.object.mass;
   c.part_inertia = cell.object.inertia;
   c.gravity = cell.gravity;
+  c.friction_recorded = true;
+  c.mu_static = cell.friction.mu_static;
+  c.mu_kinetic = cell.friction.mu_kinetic;
   return c;
 }
 

@@ -72,11 +72,14 @@ std::string planJsonText(const PlanRecord& record, const PlanFileOptions& option
   j["start_theta"] = plan.start_theta;
   j["goal"] = poseJson(plan.goal);
   j["q0"] = vec(plan.q0);
-  if (plan.cell.recorded)
+  if (plan.cell.recorded) {
     j["cell"] = {{"finger_r", plan.cell.finger_r},
                  {"part_mass", plan.cell.part_mass},
                  {"part_inertia", plan.cell.part_inertia},
                  {"gravity", plan.cell.gravity}};
+    if (plan.cell.friction_recorded)
+      j["cell"]["friction"] = {plan.cell.mu_static, plan.cell.mu_kinetic};
+  }
   j["phase_sequence"] = plan.phaseSequence();
   j["segments"] = segs;
   j["samples"] = samples;

@@ -201,6 +201,15 @@ void PlanReader::readCell(const json& c, int n, PlanCell& pc) const {
   pc.part_mass = num(c, "part_mass", "cell");
   pc.part_inertia = num(c, "part_inertia", "cell");
   pc.gravity = num(c, "gravity", "cell");
+  if (c.contains("friction")) {
+    const json& f = c.at("friction");
+    if (!f.is_array() || f.size() != 2 || !f[0].is_number() || !f[1].is_number() ||
+        !(f[0].get<double>() >= 0.0) || !(f[1].get<double>() >= 0.0))
+      throw InputError(path_ + ": cell.friction must be [static, kinetic], two numbers >= 0");
+    pc.friction_recorded = true;
+    pc.mu_static = f[0].get<double>();
+    pc.mu_kinetic = f[1].get<double>();
+  }
 }
 
 PlanSegment PlanReader::readSegment(const json& s, int n) const {

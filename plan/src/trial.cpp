@@ -7,7 +7,7 @@
 #include <memory>
 #include <random>
 
-#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/control/plan_executor.h"
 #include "rbsf/dynamics/control/sensor_model.h"
 #include "rbsf/dynamics/core/errors.h"
 #include "rbsf/dynamics/core/placement.h"
@@ -137,8 +137,11 @@ class TrialRun {
         m_(plant.numFingers()),
         nu_(plant.controlDim()),
         h_(plan.simulator.time_step),
-        law_(schedule),
+        exec_(schedule, s.execution),
         sensors_(schedule.sensing(), h_, draw.noise_seed, draw.noise, draw.com_offset),
+        camera_(schedule.model().cell().sensing, h_, splitmix(draw.noise_seed), draw.noise,
+                draw.com_offset),
+        status_camera_(!schedule.partFeedback() && schedule.model().cell().sensing.part_pose.present),
         steps_(std::lround(schedule.holdEnd() / h_)),
         rest_steps_(std::max(1L, std::min(steps_, std::lround(s.rest_window / h_)))),
         joints_(nu_) {}
@@ -168,6 +171,8 @@ class TrialRun {
   /// The rollout input of step n: the reference's (open loop) or the law's, times the drawn
   /// actuator gains; counts the steps at the input limits.
   bool input(const SimState& now, long n, VecU& tau);
+  /// Keeps what the execution status of a tick says in the outcome.
+  void watch(const ExecutionStatus& status);
   /// The rollout observer after step n: records it, follows the reference and tells whether
   /// the part is lost (false stops the trial).
   bool observe(const SimState& now, const StepReport& report, const VecU& tau, long n);
@@ -190,8 +195,13 @@ class TrialRun {
   std::vector<TrajectorySample>* trace_;
   const int m_, nu_;
   const double h_;
-  ControlLaw law_;
+  PlanExecutor exec_;
   SensorModel sensors_;
+  /// The cell's own part-pose sensor where the law runs on the joints alone: its poses serve
+  /// the execution status, not the law (its own generator: the law's measurements are
+  /// those of a trial without it).
+  SensorModel camera_;
+  const bool status_camera_;
   const long steps_, rest_steps_;
   TrialOutcome r_;
   ReferenceSample ref_, mid_;
@@ -214,8 +224,12 @@ bool TrialRun::input(const SimState& now, long n, VecU& tau) {
       }
   } else {
     sensors_.joints(now.q, joints_);
-    sensors_.partPose(n, now.q, [&](double stamp, const Pose& p) { law_.addPartPose(stamp, p); });
-    if (law_.compute(t, joints_, tau)) ++saturated_;
+    auto deliver = [&](double stamp, const Pose& p) { exec_.addPartPose(stamp, p); };
+    sensors_.partPose(n, now.q, deliver);
+    if (status_camera_) camera_.partPose(n, now.q, deliver);
+    exec_.step(t, joints_, tau);
+    watch(exec_.status());
+    if (exec_.status().saturated) ++saturated_;
   }
   for (int j = 0; j < nu_; ++j) tau[j] *= draw_.actuator_gain[j];
   return true;
@@ -247,6 +261,20 @@ void TrialRun::record(const SimState& now, const StepReport& report, const VecU&
   else
     runs_.emplace_back(ph, h_);
   untouched_ = report.touching == 0 ? untouched_ + 1 : 0;
+}
+
+void TrialRun::watch(const ExecutionStatus& st) {
+  r_.status_position = std::max(r_.status_position, st.position_deviation);
+  r_.status_angle = std::max(r_.status_angle, st.angle_deviation);
+  r_.status_stroke = std::max(r_.status_stroke, st.stroke_deviation);
+  r_.status_stroke_speed = std::max(r_.status_stroke_speed, st.stroke_speed_deviation);
+  if (r_.leaving_time < 0.0 && st.verdict == ExecutionVerdict::kLeaving)
+    r_.leaving_time = st.plan_time;
+  if (r_.hold == HoldReason::kNone && st.hold_reason != HoldReason::kNone) {
+    r_.hold = st.hold_reason;
+    r_.hold_time = st.hold_time;
+  }
+  r_.final_verdict = st.verdict;
 }
 
 double TrialRun::follow(const Eigen::Vector3d& p, double t) {

@@ -11,9 +11,9 @@
 #include <thread>
 #include <vector>
 
-#include "../../controller/src/snapshot_slots.h"
+#include "../../executor/src/snapshot_slots.h"
 #include "rbsf/controller/reorientation_controller.h"
-#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/control/plan_executor.h"
 #include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/plan_reference.h"
 
@@ -36,15 +36,16 @@ ReorientationRequest smallRequest(std::uint32_t seed = 4, double degrees = -15.0
   return r;
 }
 
-/// track() runs the control law of published plan `id`: the same inputs as a law built here
-/// on the plan's own schedule and law (lawSensing: a joint-fed plan gets the joint law
-/// whatever the cell senses), fed the same joints and, every 10th step, the same part
-/// poses, over plan times [0, until].
+/// track() runs the executor of published plan `id` (the control law behind its guard, with
+/// its status and hold): the same inputs and verdicts as an executor built here on the plan's
+/// own schedule and law (lawSensing: a joint-fed plan gets the joint law whatever the cell
+/// senses), fed the same joints and, every 10th step, the same part poses, over plan times
+/// [0, until].
 void expectTrackRunsThePlansLaw(ReorientationController& c, const plan::Plan& plan,
                                 std::uint64_t id, double until) {
   const FeedbackSchedule schedule(c.model(), plan::makeReference(plan),
                                   plan::lawSensing(c.model().cell().sensing, plan), plan.simulator);
-  ControlLaw law(schedule);
+  PlanExecutor executor(schedule);
   VecU tau, want;
   const double h = plan.simulator.time_step;
   for (long k = 0; k * h <= until; ++k) {
@@ -57,13 +58,16 @@ void expectTrackRunsThePlansLaw(ReorientationController& c, const plan::Plan& pl
     if (k % 10 == 0) {
       const Pose pose{at.q[layout::kX] + 1e-4, at.q[layout::kY], at.q[layout::kPhi]};
       c.addPartPose(t, pose);
-      law.addPartPose(t, pose);
+      executor.addPartPose(t, pose);
     }
     std::uint64_t tracked = 0;
-    ASSERT_TRUE(c.track(t, joints, tau, &tracked));
+    ExecutionStatus status;
+    ASSERT_TRUE(c.track(t, joints, tau, status, &tracked));
     EXPECT_EQ(tracked, id);
-    law.compute(t, joints, want);
+    executor.step(t, joints, want);
     ASSERT_EQ(tau, want) << "t = " << t;
+    ASSERT_EQ(status.verdict, executor.status().verdict) << "t = " << t;
+    ASSERT_EQ(status.position_deviation, executor.status().position_deviation) << "t = " << t;
   }
 }
 
@@ -253,14 +257,14 @@ TEST(SnapshotSlots, ReadersSeeWholeSnapshotsInOrder) {
     long id;
     std::vector<long> values;  // all equal to id
   };
-  detail::SnapshotSlots<Snapshot> slots;
+  executor::detail::SnapshotSlots<Snapshot> slots;
   constexpr long kPublications = 2000;
   std::atomic<bool> done{false};
   std::atomic<long> torn{0}, backwards{0}, reads{0};
   auto reader = [&] {
     long last = 0;
     while (!done.load()) {
-      const detail::SnapshotSlots<Snapshot>::Reader r(slots);
+      const executor::detail::SnapshotSlots<Snapshot>::Reader r(slots);
       const Snapshot* s = r.get();
       if (s == nullptr) continue;
       for (long v : s->values) torn += v != s->id;
@@ -282,7 +286,7 @@ TEST(SnapshotSlots, ReadersSeeWholeSnapshotsInOrder) {
   r2.join();
   EXPECT_EQ(torn.load(), 0);
   EXPECT_EQ(backwards.load(), 0);
-  const detail::SnapshotSlots<Snapshot>::Reader r(slots);
+  const executor::detail::SnapshotSlots<Snapshot>::Reader r(slots);
   ASSERT_NE(r.get(), nullptr);
   EXPECT_EQ(r.get()->id, kPublications);
 }

@@ -69,6 +69,31 @@ void ControlLaw::reset() {
   demand_.setZero();
   applied_.setZero();
   xi_.setZero();
+  holding_ = false;
+}
+
+void ControlLaw::hold() {
+  if (step_ < 0 || holding_) return;
+  hold_start_ = entry(step_).t;
+  holding_ = true;
+}
+
+double ControlLaw::planTime(double t, double* rate) const {
+  if (!holding_ || t <= hold_start_) {
+    if (rate != nullptr) *rate = 1.0;
+    return t;
+  }
+  // s' falls linearly from 1 to 0 over hold_stop, then stays 0.
+  const double T = schedule_.settings().timing.hold_stop;
+  const double d = std::min(t - hold_start_, T);
+  if (rate != nullptr) *rate = T > 0.0 ? 1.0 - d / T : 0.0;
+  return hold_start_ + (T > 0.0 ? d - 0.5 * d * d / T : 0.0);
+}
+
+void ControlLaw::sampleReference(double t, ReferenceSample& out) const {
+  double rate = 1.0;
+  schedule_.reference(planTime(t, &rate), out);
+  if (rate != 1.0) out.v *= rate;
 }
 
 void ControlLaw::addPartPose(double stamp, const Pose& pose) {
@@ -180,7 +205,7 @@ void ControlLaw::closeGaps(VecQ& q, const ContactModes& modes) {
 bool ControlLaw::computeJointOnly(double t, const VecU& joints, VecU& tau) {
   const double h = schedule_.timeStep();
   const int n = schedule_.model().configDim(), nu = schedule_.model().controlDim();
-  schedule_.reference(t, at_);
+  sampleReference(t, at_);
   if (step_ >= 0) {
     const long advance = std::max(1L, std::lround((t - entry(step_).t) / h));
     ej_ += static_cast<double>(advance) * h * dej_;
@@ -191,7 +216,7 @@ bool ControlLaw::computeJointOnly(double t, const VecU& joints, VecU& tau) {
     dej_ = -at_.v.segment(layout::kTheta, nu);  // the cell starts at rest
   }
   entry(step_).t = t;
-  entry(step_).knot = schedule_.knotAt(t);
+  entry(step_).knot = knotAt(t);
   e_.setZero(2 * n);
   for (int j = 0; j < nu; ++j) {
     const int k = layout::inputToConfig(j);
@@ -256,20 +281,20 @@ bool ControlLaw::compute(double t, const VecU& joints, VecU& tau) {
                                           &schedule_.estimatorSlipTolerance(entry(step_).knot));
       Entry& next = entry(++step_);
       next.t = entry(step_ - 1).t + h;
-      next.knot = schedule_.knotAt(next.t);
+      next.knot = knotAt(next.t);
       next.pose =
           Eigen::Vector3d(state_.q[layout::kX], state_.q[layout::kY], state_.q[layout::kPhi]);
     }
   }
   Entry& cur = entry(step_);
   cur.t = t;
-  cur.knot = schedule_.knotAt(t);
+  cur.knot = knotAt(t);
   jointUpdate(cur.knot, joints);
   cur.pose = Eigen::Vector3d(state_.q[layout::kX], state_.q[layout::kY], state_.q[layout::kPhi]);
   for (int p = 0; p < num_pending_; ++p) applyPartSample(pending_[p]);
   num_pending_ = 0;
 
-  schedule_.reference(t, at_);
+  sampleReference(t, at_);
   e_.head(n) = state_.q - at_.q;
   e_.tail(n) = state_.v - at_.v;
   q_est_ = state_.q;
@@ -316,7 +341,7 @@ void ControlLaw::blendStart(double t, VecX& e) {
 
 bool ControlLaw::control(double t, int knot, const VecX& e, const Eigen::Vector3d& xi, VecU& tau) {
   const int nu = schedule_.model().controlDim(), m = schedule_.model().numFingers();
-  schedule_.reference(t + 0.5 * schedule_.timeStep(), mid_);
+  sampleReference(t + 0.5 * schedule_.timeStep(), mid_);
   demand_ = mid_.tau;
   demand_.noalias() -= schedule_.gain(knot) * e;
   demand_.noalias() -= schedule_.integralGain(knot) * xi;

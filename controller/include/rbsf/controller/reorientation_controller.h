@@ -29,6 +29,12 @@
 /// kCancelled, kApproximate, kNoPath, kInputError, kError; result().message the details).
 /// A failed or cancelled request leaves the previously published plan (if any) in place:
 /// sample() keeps returning it, and planId() tells which plan it is.
+///
+/// Execution. Plans are published through an executor::PlanRunner (the component a cell
+/// that only executes plan files links alone: rbsf/executor/plan_runner.h); track() is its
+/// step(): the control law behind an input guard, with a status every tick and a safe hold
+/// (rbsf/dynamics/control/plan_executor.h). A run that holds (its status's verdict kHolding)
+/// stays held until start() or a new plan; resume() plans again from where it is held.
 
 #include <atomic>
 #include <cstdint>
@@ -36,12 +42,14 @@
 #include <memory>
 #include <string>
 
+#include "rbsf/dynamics/control/execution_status.h"
 #include "rbsf/dynamics/control/feedback_schedule.h"
 #include "rbsf/dynamics/control/reference_trajectory.h"
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/core/model.h"
 #include "rbsf/dynamics/core/placement.h"
 #include "rbsf/plan/certificate.h"
+#include "rbsf/executor/plan_runner.h"
 #include "rbsf/plan/plan_file.h"
 #include "rbsf/planner/pipeline/reorientation_pipeline.h"
 #include "rbsf/planner/planner_settings.h"
@@ -127,12 +135,15 @@ struct RequestResult {
 /// \brief Controller facade for one cell (see the file comment for the threading rules).
 class ReorientationController {
  public:
-  /// \brief Load the cell file (its sensing section says which law runs).
+  /// \brief Load the cell file (its sensing section says which law runs); `limits` are the
+  ///        execution status's bands and holds (execution_status.h).
   /// \throws InputError naming the key or file.
   explicit ReorientationController(const std::string& cell_file,
-                                   const FeedbackSettings& feedback = {});
+                                   const FeedbackSettings& feedback = {},
+                                   const ExecutionLimits& limits = {});
   /// \brief Use a cell built in code. \throws InputError when it is invalid.
-  explicit ReorientationController(Cell cell, const FeedbackSettings& feedback = {});
+  explicit ReorientationController(Cell cell, const FeedbackSettings& feedback = {},
+                                   const ExecutionLimits& limits = {});
   /// \brief Cancels a running request and joins the worker.
   ~ReorientationController();
   ReorientationController(const ReorientationController&) = delete;
@@ -149,13 +160,20 @@ class ReorientationController {
   ///        with the certificate it carries (the controller does not certify it again).
   ///        Refused, with `why` set and nothing published, while a request is planning,
   ///        when the plan was made for another cell (plan/plan_fit.h: fingers, recorded
-  ///        masses and offsets, the part's placement at the start), and, unless
-  ///        `accept_uncertified`, when it carries no certificate or a failed one. Not
-  ///        real-time: it builds the schedule (tens of milliseconds for a 5 s plan).
+  ///        masses and offsets, the part's placement at the start), unless told otherwise
+  ///        (`options`) when its friction or its certificate's draws are another cell's
+  ///        (certificateCellMismatch), and when it carries no certificate or a failed one.
+  ///        Not real-time: it builds the schedule (tens of milliseconds for a 5 s plan).
+  bool load(const plan::PlanRecord& record, std::string* why,
+            const executor::LoadOptions& options);
+  /// \brief load() with options{accept_uncertified}.
   bool load(const plan::PlanRecord& record, std::string* why = nullptr,
             bool accept_uncertified = false);
   /// \brief load() of a plan file (plan_file.h readPlanJson); a file that cannot be read or
   ///        parsed is refused with the reader's message.
+  bool loadFile(const std::string& path, std::string* why,
+                const executor::LoadOptions& options);
+  /// \brief loadFile() with options{accept_uncertified}.
   bool loadFile(const std::string& path, std::string* why = nullptr,
                 bool accept_uncertified = false);
   /// \brief Ask the running request to stop (the planner at its next check, the optimiser
@@ -190,6 +208,28 @@ class ReorientationController {
   ///        Returns false and leaves `tau` untouched when no plan is published; `plan_id`
   ///        receives the plan's id. One real-time thread only; lock-free, allocation-free.
   bool track(double t, const VecU& joints, VecU& tau, std::uint64_t* plan_id = nullptr) noexcept;
+  /// \brief track(), and the tick's execution status (execution_status.h: deviation,
+  ///        contacts, saturation, the part pose's age, the verdict). A verdict kLeaving, or
+  ///        a fault that lasts (a non-finite joint reading bridged past its time, a part-
+  ///        feedback run without poses), holds the part from the next tick on. Non-finite
+  ///        joints never reach the law. Lock-free, allocation-free.
+  bool track(double t, const VecU& joints, VecU& tau, ExecutionStatus& status,
+             std::uint64_t* plan_id = nullptr) noexcept;
+  /// \brief The next track() starts a fresh run of the published plan (the law and status
+  ///        reset, a hold released): t = 0 is the plan's start again. The loop thread.
+  void start() noexcept;
+  /// \brief Hold the part where the run is (the reference brought to rest on the plan's
+  ///        path; status kHolding, reason kCommanded). The loop thread.
+  void hold() noexcept;
+  /// \brief Where the held part is estimated (its pose and the base angle); false when
+  ///        the run is not holding. Any thread.
+  bool heldState(Pose& part, double& theta) const noexcept;
+  /// \brief Plan `request` again from the held state (heldState(): its start pose and
+  ///        start_theta replace the request's), as plan() does. False when the run is not
+  ///        holding or a request is planning. Not the loop thread.
+  bool resume(ReorientationRequest request);
+  /// \brief The published plan's control period [s] (0: none): call track() every period.
+  double timeStep() const noexcept;
 
   /// \brief A pose of the part's frame measured at plan time `stamp` (when the sensor took
   ///        it, not when it arrived); the next track() uses it. The loop thread of track().

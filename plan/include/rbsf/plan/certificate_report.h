@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <string>
+
+#include "rbsf/dynamics/control/execution_status.h"
 #include <string_view>
 
 #include "rbsf/dynamics/core/sensing.h"
@@ -34,6 +36,19 @@ struct TrialOutcome {
   std::string phases;            ///< phase sequence seen (runs under min_phase_run dropped)
   double departure_time = -1.0;  ///< first time farther from the path than a tolerance [s]
   std::string departure_phase;   ///< the plan's phase letter there ("hold" after its end)
+  /// \brief What the execution status (plan_executor.h) said over the trial: its largest
+  ///        deviations of the part [m, deg] and of a relied-on stroke [m] and its rate
+  ///        [m/s], the first time
+  ///        its verdict was leaving (-1: never), the hold it made (kNone: none) and when,
+  ///        and its last verdict.
+  double status_position = 0.0;
+  double status_angle = 0.0;
+  double status_stroke = 0.0;
+  double status_stroke_speed = 0.0;
+  double leaving_time = -1.0;
+  HoldReason hold = HoldReason::kNone;
+  double hold_time = -1.0;
+  ExecutionVerdict final_verdict = ExecutionVerdict::kOnPlan;
 };
 
 /// \brief The control law a certificate's trials ran (certificate.h): the plan's law with

@@ -56,6 +56,11 @@ struct PlanCell {
   double part_mass = 0.0;        ///< m_o [kg]
   double part_inertia = 0.0;     ///< I_o [kg m^2]
   double gravity = 0.0;          ///< g0 [m/s^2]
+  /// \brief The friction it was planned and certified with (mu_s, mu_k); false: not in
+  ///        the file (plans written before it was).
+  bool friction_recorded = false;
+  double mu_static = 0.0;
+  double mu_kinetic = 0.0;
 };
 
 /// \brief The record of `cell` a plan carries.

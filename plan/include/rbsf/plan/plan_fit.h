@@ -7,6 +7,7 @@
 
 #include "rbsf/dynamics/core/model.h"
 #include "rbsf/plan/plan.h"
+#include "rbsf/plan/plan_file.h"
 
 namespace rbsf::plan {
 
@@ -19,5 +20,16 @@ namespace rbsf::plan {
 ///     plan starts lifted is not asked).
 /// One sentence naming what differs, with the plan's value and the cell's.
 std::string planCellMismatch(const RbsfModel& model, const Plan& plan);
+
+/// \brief Why the evidence `record` carries does not speak for `model`'s cell, or "" when it
+///        does. In order:
+///   - friction: the plan's recorded mu_s and mu_k (Plan::cell, when recorded) equal the
+///     cell's within 1e-9 relative;
+///   - its certificate (when it ran): drawn from the cell's uncertainty (each half-width)
+///     under the cell's sensing (joint noise, and the part pose's presence, rate, latency
+///     and noise).
+/// One sentence naming what differs, with the plan's value and the cell's. A plan without
+/// these records (files written before them) is not asked.
+std::string certificateCellMismatch(const RbsfModel& model, const PlanRecord& record);
 
 }  // namespace rbsf::plan

@@ -17,7 +17,11 @@
 /// sensor's rate, the pose of the part's frame (true + noise) stamped when taken and
 /// handed over `latency` later. The input applied is the law's times the actuator gains;
 /// open loop it is the plan's feed-forward alone. The part's frame is the COM frame moved
-/// back by -d: what a sensor sees and what the goal describes.
+/// back by -d: what a sensor sees and what the goal describes. The law runs inside a
+/// PlanExecutor (plan_executor.h), whose status the outcome keeps (TrialOutcome: largest
+/// deviations, first leaving, hold); where the law runs on the joints alone and the cell has
+/// a part-pose sensor, that sensor (its own noise) still serves the status. The executor
+/// holds the part only where settings.execution says so.
 ///
 /// Success: never dropped (no contact touching for drop_time, the part's frame farther
 /// than lost_distance from the reference, or a non-finite state: the trial stops there);
@@ -32,6 +36,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "rbsf/dynamics/control/execution_status.h"
 #include "rbsf/dynamics/control/feedback_schedule.h"
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/core/trajectory_sample.h"
@@ -55,6 +60,14 @@ struct TrialSettings {
   double drop_time = 0.05;      ///< [s] with no contact touching
   double lost_distance = 0.3;   ///< [m] from the reference
   double min_phase_run = 0.02;  ///< phase runs shorter than this not reported [s]
+  /// \brief The execution status's limits (execution_status.h). A certificate judges the
+  ///        law itself, so its trials hold on nothing: the status is watched, not obeyed.
+  ExecutionLimits execution = [] {
+    ExecutionLimits e;
+    e.hold_on_leaving = false;
+    e.hold_on_faults = false;
+    return e;
+  }();
 };
 
 /// \brief One trial's plant, start, actuators and noise (file comment).

@@ -64,7 +64,16 @@
 /// least that keeps the planned contacts on the fingers. The contact forces are predicted
 /// there.
 ///
-/// Real time: compute() and addPartPose() allocate nothing; the buffers, and the
+/// Hold (hold()): the reference is brought to rest on the plan's own path. From the hold's
+/// start t_h the plan's time runs at the rate s' = 1 - (t - t_h) / hold_stop down to 0 and
+/// then stays at s_h = t_h + hold_stop / 2: the reference is the plan's at s(t) with its
+/// velocity times s', its input the plan's at s. So the part comes to rest where the plan
+/// is a short way on, with the plan's contacts, modes and gains; sliders that the slowing
+/// reference brings under the slip floor are taken as at rest (the rule that ends a run).
+/// The plan's supports are quasi-static, so a state of the path at rest is held. reset()
+/// (or time going back) ends the hold with the run.
+///
+/// Real time: compute(), hold() and addPartPose() allocate nothing; the buffers, and the
 /// estimator's simulator workspace, are allocated at construction. One ControlLaw per
 /// executing loop (it has state); the schedule it reads is shared.
 
@@ -109,6 +118,29 @@ class ControlLaw {
   ///        `tau` instead of the law's (an override by the loop, e.g. a hold or a stop).
   void recordApplied(const VecU& tau);
 
+  /// \brief Bring the reference to rest on the plan's path from the last compute()'s time
+  ///        (file comment); no effect before the first compute() or while holding.
+  ///        Allocation-free.
+  void hold();
+  /// \brief The plan time the reference is sampled at for control time t (t itself unless
+  ///        holding), and its rate ds/dt when `rate` is given.
+  double planTime(double t, double* rate = nullptr) const;
+  /// \brief True from hold() until the run is reset.
+  bool holding() const { return holding_; }
+  /// \brief The reference the law followed at the last compute() (slowed when holding).
+  const ReferenceSample& reference() const { return at_; }
+  /// \brief The contacts of the last compute(): the roles it kept, the estimate's touching
+  ///        and sliding, the sliders broken loose.
+  const ContactTick& contacts() const { return tick_; }
+  /// \brief The state the last compute() chose its input at: the estimate (on the joints
+  ///        alone, the plan's part moved the least that keeps it on the planned contacts
+  ///        with the strokes' offset) and its velocity.
+  const VecQ& controlState() const { return q_est_; }
+  const VecQ& controlVelocity() const { return v_est_; }
+  /// \brief The joint-only estimate's joint errors from the reference (tau order; zero
+  ///        under part feedback, whose estimate is estimate()).
+  const VecU& jointErrors() const { return ej_; }
+
   /// \brief The same law on a known state (q, v) instead of the estimate: for analysis and
   ///        tests (what the law would do with perfect sensing). Does not touch the estimator.
   bool computeFromState(double t, const VecQ& q, const VecQ& v, VecU& tau);
@@ -149,6 +181,9 @@ class ControlLaw {
   void keepContactVelocities();
   bool control(double t, int knot, const VecX& e, const Eigen::Vector3d& xi, VecU& tau);
   bool computeJointOnly(double t, const VecU& joints, VecU& tau);
+  /// \brief The reference at planTime(t), its velocity times the plan time's rate.
+  void sampleReference(double t, ReferenceSample& out) const;
+  int knotAt(double t) const { return schedule_.knotAt(planTime(t)); }
 
   const FeedbackSchedule& schedule_;
   std::unique_ptr<SimulatorWorkspace> ws_;
@@ -186,6 +221,8 @@ class ControlLaw {
   Eigen::Vector3d xi_ = Eigen::Vector3d::Zero();  ///< integral of the part pose error
   ReferenceSample at_, mid_;
   std::uint64_t dropped_ = 0;
+  bool holding_ = false;
+  double hold_start_ = 0.0;  ///< t_h [s]
 };
 
 }  // namespace rbsf

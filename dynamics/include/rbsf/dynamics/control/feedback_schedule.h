@@ -67,6 +67,8 @@ struct GainTiming {
   ///        constant instead of being corrected at once [s]; 0 corrects it at once.
   double start_blend = 0.5;
   double horizon_tail = 1.0;  ///< Riccati horizon beyond the last knot [s]
+  /// \brief A hold (ControlLaw::hold()) slows the plan's time to a stop over this long [s].
+  double hold_stop = 0.3;
 };
 
 /// \brief How the plan's contacts are read: which touch, which the mode relies on, when a

@@ -20,7 +20,7 @@
 #include <mutex>
 #include <thread>
 
-namespace rbsf::controller::detail {
+namespace rbsf::executor::detail {
 
 /// \brief Slots of immutable T published by writers (serialised) to lock-free readers.
 template <class T>
@@ -89,4 +89,4 @@ class SnapshotSlots {
   std::mutex writer_mutex_;  // writers only; never taken by a reader
 };
 
-}  // namespace rbsf::controller::detail
+}  // namespace rbsf::executor::detail

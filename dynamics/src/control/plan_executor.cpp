@@ -1,0 +1,244 @@
+#include "rbsf/dynamics/control/plan_executor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "rbsf/dynamics/core/state_layout.h"
+
+namespace rbsf {
+
+const char* toString(ExecutionVerdict verdict) {
+  switch (verdict) {
+    case ExecutionVerdict::kOnPlan:
+      return "on plan";
+    case ExecutionVerdict::kDegraded:
+      return "degraded";
+    case ExecutionVerdict::kLeaving:
+      return "leaving";
+    case ExecutionVerdict::kHolding:
+      return "holding";
+    case ExecutionVerdict::kDone:
+      return "done";
+  }
+  return "?";
+}
+
+const char* toString(HoldReason reason) {
+  switch (reason) {
+    case HoldReason::kNone:
+      return "none";
+    case HoldReason::kLeaving:
+      return "leaving";
+    case HoldReason::kBadJoints:
+      return "bad joints";
+    case HoldReason::kStalePose:
+      return "stale pose";
+    case HoldReason::kBadOutput:
+      return "bad output";
+    case HoldReason::kCommanded:
+      return "commanded";
+  }
+  return "?";
+}
+
+namespace {
+
+bool relied(ContactRole r) { return r == ContactRole::kStick || slipSign(r) != 0; }
+
+}  // namespace
+
+PlanExecutor::PlanExecutor(const FeedbackSchedule& schedule, const ExecutionLimits& limits)
+    : schedule_(schedule), limits_(limits), law_(schedule) {
+  const int nu = schedule.model().controlDim();
+  good_joints_ = good_tau_ = VecU::Zero(nu);
+  schedule.reference(schedule.planStart(), at_stamp_);
+}
+
+void PlanExecutor::reset() {
+  law_.reset();
+  status_ = ExecutionStatus{};
+  have_joints_ = have_tau_ = started_ = false;
+  bad_joints_since_ = open_since_ = stuck_since_ = -1.0;
+  bad_pose_ = pose_new_ = false;
+  pose_error_.setZero();
+  pose_rate_.setZero();
+  have_error_ = false;
+}
+
+void PlanExecutor::addPartPose(double stamp, const Pose& pose) {
+  if (!std::isfinite(stamp) || !std::isfinite(pose.x) || !std::isfinite(pose.y) ||
+      !std::isfinite(pose.phi)) {
+    bad_pose_ = true;
+    ++status_.bad_readings;
+    return;
+  }
+  if (schedule_.partFeedback()) law_.addPartPose(stamp, pose);
+  if (!pose_new_ || stamp >= pose_stamp_) {
+    pose_stamp_ = stamp;
+    pose_ = pose;
+  }
+  pose_new_ = true;
+}
+
+void PlanExecutor::hold(HoldReason why) {
+  if (law_.holding() || !started_) return;
+  law_.hold();
+  status_.hold_reason = why;
+  status_.hold_time = last_t_;
+  status_.verdict = ExecutionVerdict::kHolding;
+}
+
+void PlanExecutor::step(double t, const VecU& joints, VecU& tau) {
+  const double h = schedule_.timeStep();
+  status_.flags = 0;
+  if (!std::isfinite(t)) {
+    ++status_.bad_readings;
+    status_.flags |= kFlagBadTime;
+    if (!have_tau_) schedule_.reference(schedule_.planStart(), at_stamp_);
+    tau = have_tau_ ? good_tau_ : at_stamp_.tau;
+    return;
+  }
+  if (started_ && t < last_t_ - 0.5 * h) reset();  // time went back: a new run
+  const bool finite_joints = joints.size() == good_joints_.size() && joints.allFinite();
+  if (finite_joints) {
+    good_joints_ = joints;
+    have_joints_ = true;
+    bad_joints_since_ = -1.0;
+  } else {
+    ++status_.bad_readings;
+    status_.flags |= kFlagBadJoints;
+    if (bad_joints_since_ < 0.0) bad_joints_since_ = t;
+  }
+  if (!have_joints_) {
+    // Nothing measured yet: the plan's own input at t, the law not started.
+    schedule_.reference(t, at_stamp_);
+    tau = at_stamp_.tau;
+    status_.plan_time = t;
+    status_.verdict = ExecutionVerdict::kDegraded;
+    return;
+  }
+  const bool clamped = law_.compute(t, good_joints_, tau);
+  started_ = true;
+  last_t_ = t;
+  if (!tau.allFinite()) {
+    tau = have_tau_ ? good_tau_ : law_.reference().tau;
+    hold(HoldReason::kBadOutput);
+  } else {
+    good_tau_ = tau;
+    have_tau_ = true;
+  }
+  measure(t, good_joints_, clamped);
+  judge(t);
+}
+
+void PlanExecutor::measure(double t, const VecU& joints, bool clamped) {
+  ExecutionStatus& s = status_;
+  s.plan_time = t;
+  const ReferenceSample& ref = law_.reference();
+  const VecQ& q = law_.controlState();
+  double dp = std::hypot(q[layout::kX] - ref.q[layout::kX], q[layout::kY] - ref.q[layout::kY]);
+  double da = std::abs(std::remainder(q[layout::kPhi] - ref.q[layout::kPhi], 2.0 * M_PI));
+  if (pose_new_) {
+    // The newest pose against the reference at its stamp, and the error's rate from the
+    // pose before it (smoothed): the error is carried to the present over the pose's age,
+    // as the law's estimator carries a late pose.
+    schedule_.reference(law_.planTime(pose_stamp_), at_stamp_);
+    const Eigen::Vector3d e(pose_.x - at_stamp_.q[layout::kX], pose_.y - at_stamp_.q[layout::kY],
+                            std::remainder(pose_.phi - at_stamp_.q[layout::kPhi], 2.0 * M_PI));
+    const double dt = pose_stamp_ - error_stamp_;
+    if (have_error_ && dt > 0.0) pose_rate_ = 0.5 * pose_rate_ + 0.5 * (e - pose_error_) / dt;
+    pose_error_ = e;
+    error_stamp_ = pose_stamp_;
+    have_error_ = true;
+    s.pose_seen = true;
+    pose_new_ = false;
+  }
+  if (s.pose_seen) {
+    s.pose_age = t - pose_stamp_;
+    const double carry = std::min(s.pose_age, limits_.stale_pose_time);
+    const Eigen::Vector3d e = pose_error_ + carry * pose_rate_;
+    dp = std::max(dp, std::hypot(e[0], e[1]));
+    da = std::max(da, std::abs(e[2]));
+    if (s.pose_age > limits_.stale_pose_time) s.flags |= kFlagStalePose;
+  }
+  if (bad_pose_) s.flags |= kFlagBadPose;
+  bad_pose_ = false;
+  s.position_deviation = dp;
+  s.angle_deviation = da * 180.0 / M_PI;
+
+  const ContactTick& tick = law_.contacts();
+  const int m = schedule_.model().numFingers();
+  s.planned = tick.roles;
+  s.estimated = tick.estimated;
+  s.contact_open = s.slider_stuck = s.tip_slipping = 0;
+  s.stroke_deviation = s.stroke_speed_deviation = 0.0;
+  const VecQ& v = law_.controlVelocity();
+  for (int i = 0; i < m; ++i) {
+    const ContactRole r = tick.roles[i];
+    if (!relied(r)) continue;
+    const std::uint32_t bit = 1u << i;
+    const int k = layout::stroke(i);
+    s.stroke_deviation =
+        std::max(s.stroke_deviation, std::abs(joints[layout::fingerForce(i)] - ref.q[k]));
+    if (r == ContactRole::kStick)
+      s.stroke_speed_deviation = std::max(s.stroke_speed_deviation, std::abs(v[k] - ref.v[k]));
+    if (std::getenv("DBGX") && std::abs(v[k] - ref.v[k]) > 0.1) std::fprintf(stderr, "t %.3f finger %d role %d v %.3f ref %.3f stroke err %.4f\n", t, i, (int)r, v[k], ref.v[k], joints[layout::fingerForce(i)] - ref.q[k]);
+    if (tick.estimated[i] == ContactMode::kSeparated) s.contact_open |= bit;
+    if (r == ContactRole::kStick && tick.estimated[i] == ContactMode::kSlide) s.tip_slipping |= bit;
+    if (slipSign(r) != 0 && !tick.loose[i]) s.slider_stuck |= bit;
+  }
+  s.saturated = clamped;
+  if (clamped) s.flags |= kFlagSaturated;
+  if (s.tip_slipping != 0) s.flags |= kFlagTipSlipping;
+  if (s.contact_open != 0) s.flags |= kFlagContactOpen;
+  open_since_ = s.contact_open == 0 ? -1.0 : (open_since_ < 0.0 ? t : open_since_);
+  stuck_since_ = s.slider_stuck == 0 ? -1.0 : (stuck_since_ < 0.0 ? t : stuck_since_);
+  if (stuck_since_ >= 0.0 && t - stuck_since_ >= limits_.slider_stuck_time)
+    s.flags |= kFlagSliderStuck;
+  if (dp > limits_.degraded_position || da > limits_.degraded_angle) s.flags |= kFlagDeviation;
+  if (s.stroke_deviation > limits_.degraded_stroke ||
+      s.stroke_speed_deviation > limits_.degraded_stroke_speed)
+    s.flags |= kFlagStrokeError;
+  if (dp > limits_.leaving_position || da > limits_.leaving_angle ||
+      s.stroke_deviation > limits_.leaving_stroke ||
+      s.stroke_speed_deviation > limits_.leaving_stroke_speed)
+    s.flags |= kFlagOffTube;
+}
+
+void PlanExecutor::judge(double t) {
+  ExecutionStatus& s = status_;
+  const bool leaving = (s.flags & kFlagOffTube) != 0 ||
+                       (open_since_ >= 0.0 && t - open_since_ >= limits_.contact_open_time);
+  if (!law_.holding() && limits_.hold_on_faults) {
+    if (bad_joints_since_ >= 0.0 && t - bad_joints_since_ >= limits_.bad_joint_time)
+      hold(HoldReason::kBadJoints);
+    else if (schedule_.partFeedback() && s.pose_seen && s.pose_age > limits_.stale_pose_hold)
+      hold(HoldReason::kStalePose);
+  }
+  if (!law_.holding() && leaving && limits_.hold_on_leaving) {
+    s.verdict = ExecutionVerdict::kLeaving;  // this tick's; held from the next on
+    law_.hold();
+    s.hold_reason = HoldReason::kLeaving;
+    s.hold_time = t;
+    return;
+  }
+  if (law_.holding()) {
+    s.verdict = ExecutionVerdict::kHolding;
+    return;
+  }
+  const std::uint32_t degrading = kFlagDeviation | kFlagSaturated | kFlagStalePose |
+                                  kFlagBadJoints | kFlagBadPose | kFlagTipSlipping |
+                                  kFlagSliderStuck | kFlagStrokeError | kFlagContactOpen;
+  if (leaving)
+    s.verdict = ExecutionVerdict::kLeaving;
+  else if (t >= schedule_.planEnd() && (s.flags & degrading) == 0)
+    s.verdict = ExecutionVerdict::kDone;
+  else if ((s.flags & degrading) != 0)
+    s.verdict = ExecutionVerdict::kDegraded;
+  else
+    s.verdict = ExecutionVerdict::kOnPlan;
+}
+
+}  // namespace rbsf
