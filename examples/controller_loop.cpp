@@ -9,8 +9,10 @@
 //      certifies, the loop holds it with the control law on a plan of no motion (the start
 //      at rest with the holding tau: a hold is a plan like any other). The loop never waits
 //      for the planner.
-//   2. When a plan is published, the loop executes it: each millisecond the joints go to
-//      track(t, joints) and each part pose to addPartPose(stamp, pose); the plant steps 1 ms.
+//   2. When a plan is published, the loop executes it: each period (the plan's time step)
+//      the joints go to track(t, joints, tau, status) and each part pose to
+//      addPartPose(stamp, pose); the plant steps one period. Each change of the execution
+//      status's verdict is printed (at most 20), with what the status found.
 //   3. After the plan's end the law holds the final pose at rest for --settle seconds.
 // The facade publishes only certified plans unless --accept-uncertified. The loop is paced
 // by the wall clock (one tick per millisecond) unless --no-pace.
@@ -223,15 +225,30 @@ int run(int argc, char** argv) {
   double duration = 0.0;
   VecQ plan_q0;
   ctl.publishedPlan(duration, plan_q0);
+  if (ctl.timeStep() != h) throw std::runtime_error("the plan's time step is not the plant's");
   const double start_offset = (state.q - plan_q0).cwiseAbs().maxCoeff();
   const long steps = std::lround((duration + settle) / h);
   double max_error = 0.0;
+  ExecutionStatus status;
+  ExecutionVerdict shown = ExecutionVerdict::kOnPlan;
+  int changes = 0;
+  ctl.start();
   for (long k = 0; k < steps; ++k) {
     pacer.tickStart();
     const double t = static_cast<double>(k) * h;
     sensors.joints(state.q, joints);
     sensors.partPose(k, state.q, [&](double stamp, const Pose& p) { ctl.addPartPose(stamp, p); });
-    ctl.track(t, joints, tau);
+    ctl.track(t, joints, tau, status);
+    if (status.verdict != shown) {
+      if (++changes <= 20)
+        std::printf("status     t = %.3f s: %s%s%s (part %.1f mm, %.2f deg off; stroke %.1f mm)%s\n",
+                    t, toString(status.verdict),
+                    status.hold_reason != HoldReason::kNone ? ", held: " : "",
+                    status.hold_reason != HoldReason::kNone ? toString(status.hold_reason) : "",
+                    1e3 * status.position_deviation, status.angle_deviation,
+                    1e3 * status.stroke_deviation, flagsText(status.flags).c_str());
+      shown = status.verdict;
+    }
     plant.step(state, tau, *ws);
     ctl.sample(t + h, ref);
     for (int j = 0; j < model.controlDim(); ++j) {
@@ -249,6 +266,8 @@ int run(int argc, char** argv) {
               result.record.plan.segments.size(), result.record.plan.phaseSequence().c_str(),
               controller::toString(result.outcome));
   std::printf("certificate %s\n", plan::verdictText(result.record.certificate).c_str());
+  std::printf("status     final: %s after %d change%s of verdict\n", toString(status.verdict),
+              changes, changes == 1 ? "" : "s");
   std::printf(
       "executed   max joint error %.3e (rad or m; start offset %.1e); %.2f s after the "
       "end the part is %.4f m and %.3f deg from the goal\n",

@@ -9,7 +9,7 @@
 #   scripts/rbsf.sh sanitize  build with AddressSanitizer + UBSan and run the unit tests
 #   scripts/rbsf.sh tsan      build the controller facade's tests with ThreadSanitizer, run them
 #   scripts/rbsf.sh consumer  install build/ into build/install, build tests/consumer (every
-#                             component) and tests/consumer_plan (COMPONENTS plan dynamics,
+#                             component) and tests/consumer_plan (COMPONENTS executor,
 #                             OMPL and Ipopt hidden) against it, run them
 #   scripts/rbsf.sh fuzz      build the libFuzzer targets (clang, ASan + UBSan) and run each
 #                             for RBSF_FUZZ_RUNS inputs (default 150000) from the fixed seed
@@ -34,8 +34,8 @@ consumer() {  # the installed package as an outside project sees it (tests/consu
     -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
   cmake --build build/consumer -j "$jobs"
   ./build/consumer/rbsf_consumer build/install/share/rbsf/cells/default.yaml
-  # A client of plans and the dynamics alone, where OMPL and Ipopt cannot be found: it runs
-  # a plan file written by the installed tool.
+  # A cell that executes plan files (COMPONENTS executor), where OMPL and Ipopt cannot be
+  # found: it runs a plan file written by the installed tool.
   rm -rf build/consumer_plan
   cmake -S tests/consumer_plan -B build/consumer_plan -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_PREFIX_PATH="$root/build/install" -DCMAKE_DISABLE_FIND_PACKAGE_ompl=ON \

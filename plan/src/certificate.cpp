@@ -126,6 +126,26 @@ const char* toString(TrialLaw law) {
   return "?";
 }
 
+TrialEnd trialEnd(const TrialOutcome& o) {
+  if (o.dropped) return TrialEnd::kLost;
+  if (o.hold != HoldReason::kNone) return TrialEnd::kHeld;
+  return o.success ? TrialEnd::kDone : TrialEnd::kOff;
+}
+
+const char* toString(TrialEnd end) {
+  switch (end) {
+    case TrialEnd::kDone:
+      return "done";
+    case TrialEnd::kHeld:
+      return "held";
+    case TrialEnd::kLost:
+      return "lost";
+    case TrialEnd::kOff:
+      return "off";
+  }
+  return "?";
+}
+
 TrialLaw parseTrialLaw(std::string_view name, const std::string& where) {
   for (TrialLaw law : {TrialLaw::kPartFeedback, TrialLaw::kJointFeedback, TrialLaw::kOpenLoop})
     if (name == toString(law)) return law;

@@ -73,6 +73,11 @@ TrialDraw drawTrial(const Cell& cell, const Plan& plan, std::uint64_t seed, int 
   d.actuator_gain.resize(nu);
   for (int j = 0; j < nu; ++j) d.actuator_gain[j] = 1.0 + un.actuator_gain * u(rng);
   d.noise_seed = rng();
+  // Over the plan and a generous settle hold: events past the run are never reached.
+  const double h = plan.simulator.time_step;
+  d.faults = drawFaults(cell.faults, plan, seed, index, std::lround((plan.duration() + 5.0) / h),
+                        h, static_cast<int>(plan.q0.size()) - 3);
+  c.object.mass *= 1.0 + d.faults.mass_error;
   const RbsfModel plant(c);
   const double theta = plan.q0[layout::kTheta];
   try {
@@ -137,7 +142,9 @@ class TrialRun {
         m_(plant.numFingers()),
         nu_(plant.controlDim()),
         h_(plan.simulator.time_step),
-        exec_(schedule, s.execution),
+        exec_(schedule, limitsFor(s.execution, draw.faults)),
+        faults_(draw.faults),
+        fault_flags_(flagsOf(draw.faults)),
         sensors_(schedule.sensing(), h_, draw.noise_seed, draw.noise, draw.com_offset),
         camera_(schedule.model().cell().sensing, h_, splitmix(draw.noise_seed), draw.noise,
                 draw.com_offset),
@@ -149,6 +156,8 @@ class TrialRun {
   /// The trial on `simulator` (the plant's), measured at its end and judged (judge()).
   TrialOutcome run(const Simulator& simulator) {
     auto ws = std::make_unique<SimulatorWorkspace>(m_);
+    const long first_fault = draw_.faults.firstStep();
+    if (first_fault >= 0) r_.fault_time = static_cast<double>(first_fault) * h_;
     SimState state(draw_.q0, VecQ::Zero(draw_.q0.size()));
     window_start_ = framePose(state.q);
     const long taken = rollout(
@@ -168,8 +177,23 @@ class TrialRun {
     const Pose p = sensors_.framePose(q);
     return Eigen::Vector3d(p.x, p.y, p.phi);
   }
+  /// The execution limits of a trial: its settings', with the holds on when it draws faults.
+  static ExecutionLimits limitsFor(ExecutionLimits limits, const FaultDraw& faults) {
+    if (faults.any()) limits.hold_on_leaving = limits.hold_on_faults = true;
+    return limits;
+  }
+  /// The status flags by which the status sees the faults drawn.
+  static std::uint32_t flagsOf(const FaultDraw& f) {
+    std::uint32_t flags = 0;
+    if (!f.dropouts.empty()) flags |= kFlagStalePose;
+    if (!f.spikes.empty()) flags |= kFlagBadJoints | kFlagStrokeError | kFlagDeviation;
+    if (!f.missed.empty()) flags |= kFlagLateTick;
+    if (f.cut_step >= 0 || f.mass_error != 0.0)
+      flags |= kFlagSaturated | kFlagDeviation | kFlagStrokeError | kFlagOffTube;
+    return flags;
+  }
   /// The rollout input of step n: the reference's (open loop) or the law's, times the drawn
-  /// actuator gains; counts the steps at the input limits.
+  /// actuator gains, through the drawn faults; counts the steps at the input limits.
   bool input(const SimState& now, long n, VecU& tau);
   /// Keeps what the execution status of a tick says in the outcome.
   void watch(const ExecutionStatus& status);
@@ -196,6 +220,9 @@ class TrialRun {
   const int m_, nu_;
   const double h_;
   PlanExecutor exec_;
+  FaultInjector faults_;
+  const std::uint32_t fault_flags_;
+  VecU last_tau_;  ///< the law's last input (a missed tick holds it)
   SensorModel sensors_;
   /// The cell's own part-pose sensor where the law runs on the joints alone: its poses serve
   /// the execution status, not the law (its own generator: the law's measurements are
@@ -222,16 +249,23 @@ bool TrialRun::input(const SimState& now, long n, VecU& tau) {
         ++saturated_;
         break;
       }
+  } else if (faults_.missed(n) && last_tau_.size() == nu_) {
+    tau = last_tau_;  // the loop skipped this tick: the actuators hold the last input
   } else {
     sensors_.joints(now.q, joints_);
-    auto deliver = [&](double stamp, const Pose& p) { exec_.addPartPose(stamp, p); };
+    faults_.corruptJoints(n, joints_);
+    auto deliver = [&](double stamp, const Pose& p) {
+      if (!faults_.dropped(std::lround(stamp / h_))) exec_.addPartPose(stamp, p);
+    };
     sensors_.partPose(n, now.q, deliver);
     if (status_camera_) camera_.partPose(n, now.q, deliver);
     exec_.step(t, joints_, tau);
     watch(exec_.status());
     if (exec_.status().saturated) ++saturated_;
+    last_tau_ = tau;
   }
   for (int j = 0; j < nu_; ++j) tau[j] *= draw_.actuator_gain[j];
+  faults_.cut(n, plant_.cell(), tau);
   return true;
 }
 
@@ -275,6 +309,12 @@ void TrialRun::watch(const ExecutionStatus& st) {
     r_.hold_time = st.hold_time;
   }
   r_.final_verdict = st.verdict;
+  if (r_.report_time < 0.0 && (st.verdict == ExecutionVerdict::kLeaving ||
+                               st.verdict == ExecutionVerdict::kHolding))
+    r_.report_time = st.plan_time;
+  if (r_.fault_time >= 0.0 && r_.fault_seen_time < 0.0 && st.plan_time >= r_.fault_time &&
+      (st.flags & fault_flags_) != 0)
+    r_.fault_seen_time = st.plan_time;
 }
 
 double TrialRun::follow(const Eigen::Vector3d& p, double t) {

@@ -1,5 +1,6 @@
-// The controller facade's real-time path allocates nothing: sample(), track() and
-// addPartPose() on a published plan, for times before, inside and after the plan.
+// The controller facade's real-time path allocates nothing: sample(), track() (with and
+// without its status, through non-finite readings) and addPartPose() on a published plan,
+// for times before, inside and after the plan; hold(), heldState() and start().
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,15 +34,29 @@ TEST(NoAllocationController, SampleTrackAndPartPoses) {
   c.track(0.0, joints, tau);  // the law starts (its first call, as a loop's)
   std::uint64_t id = 0;
   int sampled = 0;
+  ExecutionStatus status;
+  Pose held;
+  double theta = 0.0;
+  VecU bad = joints;
+  bad[1] = std::nan("");
   test::MallocCounter counter;
   for (int k = 1; k < 1200; ++k) {
     const double t = 1e-3 * k * duration;  // 0 .. 1.2 T
     sampled += c.sample(t, ref, &id);
     if (k % 10 == 0) c.addPartPose(t, Pose{ref.q[0], ref.q[1], ref.q[2]});
-    sampled += c.track(t, joints, tau, &id);
+    if (k % 97 == 0) c.addPartPose(t, Pose{std::nan(""), ref.q[1], ref.q[2]});
+    if (k % 2 == 0)
+      sampled += c.track(t, joints, tau, &id);
+    else
+      sampled += c.track(t, k % 50 == 1 ? bad : joints, tau, status, &id);
+    if (k == 900) c.hold();
+    if (k > 900) sampled += c.heldState(held, theta);
   }
+  c.start();
+  sampled += c.track(0.0, joints, tau, status, &id);
   EXPECT_EQ(counter.count(), 0);
-  EXPECT_EQ(sampled, 2398);
+  EXPECT_EQ(status.verdict == ExecutionVerdict::kHolding, false);
+  EXPECT_EQ(sampled, 2398 + 299 + 1);
   EXPECT_EQ(id, 1u);
 }
 

@@ -100,5 +100,52 @@ TEST(LoadPlan, APlanForAnotherCellIsRefusedNamingWhatDiffers) {
   EXPECT_TRUE(same.load(record, &why)) << why;
 }
 
+TEST(LoadPlan, APlanWhoseEvidenceIsAnotherCellsIsRefusedUnlessAccepted) {
+  // The same part and fingers with other friction or uncertainty: the plan fits, but its
+  // certificate speaks for another cell.
+  const plan::PlanRecord record = plan::readPlanJson(planFile());
+  ASSERT_TRUE(record.plan.cell.friction_recorded);
+  ASSERT_TRUE(record.certificate.ran);
+  const Cell base = loadCell(kDefaultCell);
+  auto refusal = [&](Cell cell) {
+    executor::PlanRunner runner(std::move(cell));
+    std::string why;
+    EXPECT_FALSE(runner.load(record, &why));
+    EXPECT_EQ(runner.planId(), 0u);
+    executor::LoadOptions accept;
+    accept.accept_other_evidence = true;
+    std::string none;
+    EXPECT_TRUE(runner.load(record, &none, accept)) << none;
+    return why;
+  };
+  Cell slippery = base;
+  slippery.friction.mu_static = 0.3;
+  EXPECT_NE(refusal(slippery).find("static friction mu_s is 0.5 in the plan, 0.3 in this cell"),
+            std::string::npos)
+      << refusal(slippery);
+  Cell kinetic = base;
+  kinetic.friction.mu_kinetic = 0.5;
+  EXPECT_NE(refusal(kinetic).find("kinetic friction mu_k"), std::string::npos) << refusal(kinetic);
+  Cell wider = base;
+  wider.uncertainty.mass = 0.3;
+  EXPECT_NE(refusal(wider).find("uncertainty.mass is 0.05 in the plan, 0.3 in this cell"),
+            std::string::npos)
+      << refusal(wider);
+  Cell blind = base;
+  blind.sensing.part_pose.present = false;
+  EXPECT_NE(refusal(blind).find("this cell does not see it"), std::string::npos) << refusal(blind);
+  Cell late = base;
+  late.sensing.part_pose.latency = 0.05;
+  EXPECT_NE(refusal(late).find("latency"), std::string::npos) << refusal(late);
+  // Its own cell takes it without being told.
+  executor::PlanRunner same(base);
+  std::string why;
+  EXPECT_TRUE(same.load(record, &why)) << why;
+  // The facade refuses it the same way.
+  ReorientationController facade(slippery);
+  EXPECT_FALSE(facade.load(record, &why));
+  EXPECT_NE(why.find("static friction"), std::string::npos) << why;
+}
+
 }  // namespace
 }  // namespace rbsf::controller

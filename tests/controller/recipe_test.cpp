@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rbsf/controller/reorientation_controller.h"
+#include "rbsf/executor/plan_runner.h"
 #include "rbsf/dynamics/control/sensor_model.h"
 #include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/dynamics/io/cell_file.h"
@@ -74,6 +75,11 @@ class SimulatedCell {
     polled_ = false;
     states_.push_back(state_.q);
   }
+  /// \brief The cell's own logic hears that the run holds the part (counted here).
+  void report(const ExecutionStatus& status) {
+    if (status.verdict == ExecutionVerdict::kHolding) ++held_ticks_;
+  }
+  long heldTicks() const { return held_ticks_; }
   const VecQ& q() const { return state_.q; }
   /// \brief The state after each tick.
   const std::vector<VecQ>& states() const { return states_; }
@@ -84,6 +90,7 @@ class SimulatedCell {
   SensorModel sensors_;
   SimState state_;
   long tick_ = 0;
+  long held_ticks_ = 0;
   bool polled_ = false;
   std::vector<std::pair<double, Pose>> queue_;
   std::vector<VecQ> states_;
@@ -93,27 +100,31 @@ class SimulatedCell {
 int runPlanFile(const std::string& cell_file, const std::string& plan_file, SimulatedCell& cell,
                 double settle) {
   // [recipe]
-  rbsf::controller::ReorientationController ctl(cell_file);  // throws rbsf::InputError
+  rbsf::executor::PlanRunner runner(cell_file);  // throws rbsf::InputError
   std::string why;
-  if (!ctl.loadFile(plan_file, &why)) {  // another cell's plan, not certified, not a plan
+  if (!runner.loadFile(plan_file, &why)) {  // another cell's plan or evidence, not certified
     std::fprintf(stderr, "%s\n", why.c_str());
     return 2;
   }
   double duration = 0.0;
   rbsf::VecQ q0;
-  ctl.publishedPlan(duration, q0);  // the cell starts at rest at q0 (the plan's start)
-  rbsf::VecU joints(ctl.model().controlDim()), tau;
+  runner.publishedPlan(duration, q0);  // the cell starts at rest at q0 (the plan's start)
+  const double h = runner.timeStep();  // the loop's period: the plan's time step
+  rbsf::VecU joints(runner.model().controlDim()), tau;
+  rbsf::ExecutionStatus status;
   double stamp = 0.0;
   rbsf::Pose pose;
-  const long ticks = std::lround((duration + settle) / 1e-3);
-  for (long k = 0; k < ticks; ++k) {  // the 1 kHz loop thread; plan time t = k ms
-    const double t = 1e-3 * static_cast<double>(k);
+  runner.start();
+  const long ticks = std::lround((duration + settle) / h);
+  for (long k = 0; k < ticks; ++k) {  // the loop thread; plan time t = k h
+    const double t = h * static_cast<double>(k);
     cell.readJoints(joints);                  // theta, l_1..l_m measured now
     while (cell.readPartPose(stamp, pose)) {  // each part pose that arrived, when sensed,
-      ctl.addPartPose(stamp, pose);           // stamped when it was taken
+      runner.addPartPose(stamp, pose);        // stamped when it was taken
     }
-    ctl.track(t, joints, tau);  // the plan's law: estimate, feedback, contact-force QP
-    cell.apply(tau);            // held until the next tick
+    runner.step(t, joints, tau, &status);  // the plan's law behind its guard, and its status
+    cell.apply(tau);                       // held until the next tick
+    if (status.verdict == rbsf::ExecutionVerdict::kHolding) cell.report(status);
   }
   // [recipe]
   return 0;
@@ -157,6 +168,7 @@ TEST(ExecutionRecipe, RunsAPlanFileAsTheCertificatesTrialWithoutDraws) {
   EXPECT_LT((cell.q() - trace.back().q).cwiseAbs().maxCoeff(), 1e-9) << cell.q().transpose() << "\n"
                                                                      << trace.back().q.transpose();
   EXPECT_LT(std::hypot(cell.q()[0] - plan.goal.x, cell.q()[1] - plan.goal.y), 0.01);
+  EXPECT_EQ(cell.heldTicks(), 0);
 }
 
 TEST(ExecutionRecipe, RunsAPartFeedbackPlanAsItsTrialStepForStep) {
@@ -194,6 +206,10 @@ TEST(ExecutionRecipe, RunsAPartFeedbackPlanAsItsTrialStepForStep) {
   for (std::size_t k = 0; k < same; ++k)
     worst = std::max(worst, (cell.states()[k] - trace[k].q).cwiseAbs().maxCoeff());
   EXPECT_LT(worst, 1e-9) << "over " << same << " steps";
+  // Held from the tick after the leaving verdict to the end, and the cell heard of it.
+  if (o.leaving_time >= 0.0) {
+    EXPECT_EQ(cell.heldTicks(), static_cast<long>(cell.states().size()) - static_cast<long>(same));
+  }
 }
 
 TEST(ExecutionRecipe, StopsAtLoadFileForAnotherCellsPlan) {

@@ -3,7 +3,9 @@
 // batches until the lower confidence bound of the success rate decides), judged by
 // outcome. The cell may differ from the one the plan was made for (the parameters measured
 // on the real cell); on the planning cell, with the certificate's seed and trial settings,
-// it reproduces the plan file's certificate exactly.
+// it reproduces the plan file's certificate exactly. A cell with a `faults` section draws
+// them in every trial (the executor's holds on: trial.h); --fault-table then also runs each
+// kind of fault alone and prints how the trials ended (done, held, lost, off) per kind.
 //
 // Exit status: 0 certified; 4 not certified (verdict on stderr); 2 bad input (option,
 // value, file, a plan for another number of fingers); 130 stopped by SIGINT, 143 by
@@ -19,6 +21,7 @@
 #include "rbsf/dynamics/io/atomic_file.h"
 #include "rbsf/dynamics/io/cell_file.h"
 #include "rbsf/plan/certificate.h"
+#include "rbsf/plan/fault_table.h"
 #include "rbsf/plan/plan_file.h"
 #include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/cli_values.h"
@@ -51,7 +54,7 @@ int run(int argc, char** argv) {
       "value, file, a plan for another number of fingers), one message on stderr; 130 "
       "stopped by SIGINT, 143 by SIGTERM, nothing written; 1 internal error.");
   std::string cell, plan_path, seed_text = "1", out, csv;
-  bool open_loop = false;
+  bool open_loop = false, fault_table = false;
   CertificateOptions certificate;
   app.add_option("--cell", cell, "cell YAML file (may differ from the planning cell)")->required();
   app.add_option("--plan", plan_path, "plan JSON file (plan-reorientation --out)")->required();
@@ -60,6 +63,9 @@ int run(int argc, char** argv) {
   app.add_flag("--open-loop", open_loop, "the plan's inputs alone, no feedback");
   app.add_option("--out", out, "write the certificate as JSON");
   app.add_option("--csv", csv, "write the worst trial's trajectory as CSV (every step)");
+  app.add_flag("--fault-table", fault_table,
+               "with a cell that declares faults: also run each kind alone, with the same "
+               "trials, and print how the trials ended per kind");
   parseCommandLine(app, argc, argv);
 
   plan::CertificateSettings settings;
@@ -77,14 +83,27 @@ int run(int argc, char** argv) {
   if (plan.q0.size() != model.configDim())
     throw InputError("--plan: the plan is for " + std::to_string(plan.q0.size() - 4) +
                      " fingers; the cell " + cell + " has " + std::to_string(model.numFingers()));
+  if (fault_table && !model.cell().faults.any())
+    throw InputError("--fault-table: the cell " + cell + " declares no faults (section faults)");
   const std::atomic<bool>& cancel = InterruptFlag::install();
-  const plan::Certificate c = plan::certify(model, plan, settings, nullptr, &cancel);
+  std::vector<plan::TrialOutcome> outcomes;
+  const plan::Certificate c = plan::certify(model, plan, settings, &outcomes, &cancel);
+  std::vector<plan::FaultRow> rows;
+  if (fault_table) {
+    for (const auto& [kind, alone] : plan::faultKinds(model.cell())) {
+      std::vector<plan::TrialOutcome> kind_outcomes;
+      plan::certify(RbsfModel(alone), plan, settings, &kind_outcomes, &cancel);
+      rows.push_back(plan::faultRow(kind, kind_outcomes));
+    }
+    rows.push_back(plan::faultRow("all faults", outcomes));
+  }
   if (InterruptFlag::raised()) {
     std::printf("interrupted: nothing written\n");
     return InterruptFlag::exitStatus();
   }
   std::printf("plan %s on cell %s\n", plan_path.c_str(), cell.c_str());
   std::fputs(plan::certificateReportText(c).c_str(), stdout);
+  if (fault_table) std::fputs(plan::faultTableText(rows).c_str(), stdout);
 
   // Everything is formatted before any file is written.
   std::string csv_text;

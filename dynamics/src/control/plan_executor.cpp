@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "rbsf/dynamics/core/state_layout.h"
 
@@ -43,6 +41,19 @@ const char* toString(HoldReason reason) {
   return "?";
 }
 
+std::string flagsText(std::uint32_t flags) {
+  static const char* const kWords[] = {
+      "deviation",         "off the tube",         "relied-on contact open",
+      "slider stuck",      "sticking tip slipping", "input at its limit",
+      "stale part pose",   "bad joint reading",    "bad part pose",
+      "bad time",          "stroke error",         "late tick",
+      "joint jump"};
+  std::string out;
+  for (int b = 0; b < static_cast<int>(sizeof kWords / sizeof kWords[0]); ++b)
+    if ((flags >> b) & 1u) out += (out.empty() ? "; " : ", ") + std::string(kWords[b]);
+  return out;
+}
+
 namespace {
 
 bool relied(ContactRole r) { return r == ContactRole::kStick || slipSign(r) != 0; }
@@ -50,9 +61,21 @@ bool relied(ContactRole r) { return r == ContactRole::kStick || slipSign(r) != 0
 }  // namespace
 
 PlanExecutor::PlanExecutor(const FeedbackSchedule& schedule, const ExecutionLimits& limits)
-    : schedule_(schedule), limits_(limits), law_(schedule) {
+    : schedule_(schedule), limits_(limits), law_(schedule), h_(schedule.timeStep()) {
   const int nu = schedule.model().controlDim();
-  good_joints_ = good_tau_ = VecU::Zero(nu);
+  good_joints_ = good_tau_ = jump_ = good_rate_ = VecU::Zero(nu);
+  // The largest jump of a reading from its prediction in one period: what the actuator at
+  // its limit moves the bare joint (its limit over its own inertia), times the margin, plus
+  // the encoder's noise.
+  const Cell& cell = schedule.model().cell();
+  const JointSensing& js = schedule.sensing().joints;
+  gate_ = VecU::Zero(nu);
+  for (int j = 0; j < nu; ++j) {
+    const bool base = j == layout::kTauTheta;
+    const double inertia = base ? cell.base.inertia : cell.fingers[j - 1].mass;
+    const double noise = base ? js.angle_noise : js.stroke_noise;
+    gate_[j] = limits.jump_margin * cell.inputLimit(j) / inertia * h_ * h_ + 10.0 * noise;
+  }
   schedule.reference(schedule.planStart(), at_stamp_);
 }
 
@@ -60,8 +83,9 @@ void PlanExecutor::reset() {
   law_.reset();
   status_ = ExecutionStatus{};
   have_joints_ = have_tau_ = started_ = false;
+  good_rate_.setZero();
   bad_joints_since_ = open_since_ = stuck_since_ = -1.0;
-  bad_pose_ = pose_new_ = false;
+  bad_pose_ = pose_new_ = have_jump_ = false;
   pose_error_.setZero();
   pose_rate_.setZero();
   have_error_ = false;
@@ -90,6 +114,29 @@ void PlanExecutor::hold(HoldReason why) {
   status_.verdict = ExecutionVerdict::kHolding;
 }
 
+bool PlanExecutor::plausible(double t, const VecU& joints) {
+  // The prediction: the last good reading moved on at the rate of the last two good ones.
+  const double dt = t - good_t_, grow = std::max(1.0, (dt * dt) / (h_ * h_));
+  bool near_good = true, near_jump = have_jump_;
+  for (int j = 0; j < joints.size(); ++j) {
+    const double gate = gate_[j] * grow;
+    near_good = near_good && std::abs(joints[j] - (good_joints_[j] + dt * good_rate_[j])) <= gate;
+    // A second jump from the first, as far as the joint moved per period before.
+    near_jump = near_jump && std::abs(joints[j] - jump_[j]) <=
+                                 gate_[j] + std::abs(good_rate_[j]) * (t - jump_t_);
+  }
+  if (near_good) {
+    have_jump_ = false;
+    return true;
+  }
+  // Two readings in a row that agree with each other: the joints did move (an impact), and
+  // the second is taken.
+  jump_ = joints;
+  jump_t_ = t;
+  have_jump_ = !near_jump;
+  return near_jump;
+}
+
 void PlanExecutor::step(double t, const VecU& joints, VecU& tau) {
   const double h = schedule_.timeStep();
   status_.flags = 0;
@@ -101,8 +148,15 @@ void PlanExecutor::step(double t, const VecU& joints, VecU& tau) {
     return;
   }
   if (started_ && t < last_t_ - 0.5 * h) reset();  // time went back: a new run
+  if (started_ && t > last_t_ + 1.5 * h) status_.flags |= kFlagLateTick;
   const bool finite_joints = joints.size() == good_joints_.size() && joints.allFinite();
-  if (finite_joints) {
+  if (finite_joints && started_ && !plausible(t, joints)) {
+    // A jump no actuator can make in one period: a spike, bridged like a bad reading.
+    ++status_.bad_readings;
+    status_.flags |= kFlagBadJoints | kFlagJointJump;
+  } else if (finite_joints) {
+    if (have_joints_ && t > good_t_) good_rate_ = (joints - good_joints_) / (t - good_t_);
+    good_t_ = t;
     good_joints_ = joints;
     have_joints_ = true;
     bad_joints_since_ = -1.0;
@@ -184,7 +238,6 @@ void PlanExecutor::measure(double t, const VecU& joints, bool clamped) {
         std::max(s.stroke_deviation, std::abs(joints[layout::fingerForce(i)] - ref.q[k]));
     if (r == ContactRole::kStick)
       s.stroke_speed_deviation = std::max(s.stroke_speed_deviation, std::abs(v[k] - ref.v[k]));
-    if (std::getenv("DBGX") && std::abs(v[k] - ref.v[k]) > 0.1) std::fprintf(stderr, "t %.3f finger %d role %d v %.3f ref %.3f stroke err %.4f\n", t, i, (int)r, v[k], ref.v[k], joints[layout::fingerForce(i)] - ref.q[k]);
     if (tick.estimated[i] == ContactMode::kSeparated) s.contact_open |= bit;
     if (r == ContactRole::kStick && tick.estimated[i] == ContactMode::kSlide) s.tip_slipping |= bit;
     if (slipSign(r) != 0 && !tick.loose[i]) s.slider_stuck |= bit;
@@ -230,7 +283,8 @@ void PlanExecutor::judge(double t) {
   }
   const std::uint32_t degrading = kFlagDeviation | kFlagSaturated | kFlagStalePose |
                                   kFlagBadJoints | kFlagBadPose | kFlagTipSlipping |
-                                  kFlagSliderStuck | kFlagStrokeError | kFlagContactOpen;
+                                  kFlagSliderStuck | kFlagStrokeError | kFlagContactOpen |
+                                  kFlagLateTick;
   if (leaving)
     s.verdict = ExecutionVerdict::kLeaving;
   else if (t >= schedule_.planEnd() && (s.flags & degrading) == 0)

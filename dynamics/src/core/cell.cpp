@@ -90,6 +90,26 @@ void Cell::validate() const {
     c.fail("uncertainty.kinetic_friction must be [min, max] with min <= max (got [" +
            roundTripText(u.kinetic_friction_min) + ", " + roundTripText(u.kinetic_friction_max) +
            "])");
+
+  // faults (faults.h): rates and shares of a sensible run.
+  const Faults& f = faults;
+  c.nonNegative(f.pose_dropouts.rate, "faults.pose_dropouts.rate");
+  c.atMost(f.pose_dropouts.rate, 100.0, "100 per s", "faults.pose_dropouts.rate");
+  c.positive(f.pose_dropouts.length, "faults.pose_dropouts.length");
+  c.atMost(f.pose_dropouts.length, 10.0, "10 s", "faults.pose_dropouts.length");
+  c.nonNegative(f.joint_spikes.rate, "faults.joint_spikes.rate");
+  c.atMost(f.joint_spikes.rate, 1000.0, "1000 per s", "faults.joint_spikes.rate");
+  c.nonNegative(f.joint_spikes.size, "faults.joint_spikes.size");
+  c.atMost(f.joint_spikes.size, 1.0, "1 rad or m", "faults.joint_spikes.size");
+  c.nonNegative(f.joint_spikes.nan_share, "faults.joint_spikes.nan");
+  c.atMost(f.joint_spikes.nan_share, 1.0, "1", "faults.joint_spikes.nan");
+  c.nonNegative(f.missed_tick_rate, "faults.missed_ticks.rate");
+  c.atMost(f.missed_tick_rate, 1000.0, "1000 per s", "faults.missed_ticks.rate");
+  c.nonNegative(f.force_cut_chance, "faults.force_cut.chance");
+  c.atMost(f.force_cut_chance, 1.0, "1", "faults.force_cut.chance");
+  c.nonNegative(f.force_cut_to, "faults.force_cut.to");
+  c.atMost(f.force_cut_to, 1.0, "1", "faults.force_cut.to");
+  c.fraction(f.mass_error, "faults.mass_error");
 }
 
 double Cell::inputLimit(int j) const {

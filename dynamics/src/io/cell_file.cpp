@@ -116,6 +116,35 @@ void readUncertainty(const YamlReader& rd, const YAML::Node& n, Uncertainty& u) 
   u.actuator_gain = rd.number(n, p, "actuator_gain", u.actuator_gain, false);
 }
 
+/// Section `faults` (faults.h); keys left out keep the values already in `f`.
+void readFaults(const YamlReader& rd, const YAML::Node& n, Faults& f) {
+  const std::string p = "faults";
+  rd.mapping(n, p, {"pose_dropouts", "joint_spikes", "missed_ticks", "force_cut", "mass_error"});
+  if (const YAML::Node d = rd.get(n, p, "pose_dropouts", false); d.IsDefined()) {
+    rd.mapping(d, p + ".pose_dropouts", {"rate", "length"});
+    f.pose_dropouts.rate = rd.number(d, p + ".pose_dropouts", "rate", f.pose_dropouts.rate, false);
+    f.pose_dropouts.length =
+        rd.number(d, p + ".pose_dropouts", "length", f.pose_dropouts.length, false);
+  }
+  if (const YAML::Node s = rd.get(n, p, "joint_spikes", false); s.IsDefined()) {
+    const std::string q = p + ".joint_spikes";
+    rd.mapping(s, q, {"rate", "size", "nan"});
+    f.joint_spikes.rate = rd.number(s, q, "rate", f.joint_spikes.rate, false);
+    f.joint_spikes.size = rd.number(s, q, "size", f.joint_spikes.size, false);
+    f.joint_spikes.nan_share = rd.number(s, q, "nan", f.joint_spikes.nan_share, false);
+  }
+  if (const YAML::Node m = rd.get(n, p, "missed_ticks", false); m.IsDefined()) {
+    rd.mapping(m, p + ".missed_ticks", {"rate"});
+    f.missed_tick_rate = rd.number(m, p + ".missed_ticks", "rate", f.missed_tick_rate, false);
+  }
+  if (const YAML::Node c = rd.get(n, p, "force_cut", false); c.IsDefined()) {
+    rd.mapping(c, p + ".force_cut", {"chance", "to"});
+    f.force_cut_chance = rd.number(c, p + ".force_cut", "chance", f.force_cut_chance, false);
+    f.force_cut_to = rd.number(c, p + ".force_cut", "to", f.force_cut_to, false);
+  }
+  f.mass_error = rd.number(n, p, "mass_error", f.mass_error, false);
+}
+
 /// Section `motion_limits` (motion_limits.h); keys left out keep the values in `l`.
 void readMotionLimits(const YamlReader& rd, const YAML::Node& n, MotionLimits& l) {
   const std::string p = "motion_limits";
@@ -134,7 +163,7 @@ Cell parseCell(const std::string& yaml_text, const std::string& label) {
   if (root.IsNull()) rd.fail("the cell is empty (expected keys base, fingers, object, friction)");
   rd.mapping(root, "",
              {"gravity", "base", "fingers", "object", "friction", "sensing", "uncertainty",
-              "motion_limits"},
+              "motion_limits", "faults"},
              "the cell");
 
   Cell cell;
@@ -181,6 +210,8 @@ Cell parseCell(const std::string& yaml_text, const std::string& label) {
   if (uncertainty.IsDefined()) readUncertainty(rd, uncertainty, cell.uncertainty);
   const YAML::Node limits = rd.get(root, "", "motion_limits", false);
   if (limits.IsDefined()) readMotionLimits(rd, limits, cell.motion_limits);
+  const YAML::Node faults = rd.get(root, "", "faults", false);
+  if (faults.IsDefined()) readFaults(rd, faults, cell.faults);
 
   cell.validate();
   return cell;

@@ -49,7 +49,22 @@ struct TrialOutcome {
   HoldReason hold = HoldReason::kNone;
   double hold_time = -1.0;
   ExecutionVerdict final_verdict = ExecutionVerdict::kOnPlan;
+  /// \brief Faults drawn (trial.h): the first time one acted (-1: none), and the first time
+  ///        at or after it that the status flagged one (-1: never).
+  double fault_time = -1.0;
+  double fault_seen_time = -1.0;
+  /// \brief The first time the status said leaving or holding (-1: never): a drop reported
+  ///        no later than 50 ms after it happened counts as reported.
+  double report_time = -1.0;
 };
+
+/// \brief How a trial ended: done (succeeded, never held), held (a hold kept the part on the
+///        fingers), lost (dropped) or off (ended unheld away from the goal or not at rest).
+enum class TrialEnd : std::uint8_t { kDone, kHeld, kLost, kOff };
+/// \brief The end of `o`.
+TrialEnd trialEnd(const TrialOutcome& o);
+/// \brief "done", "held", "lost", "off".
+const char* toString(TrialEnd end);
 
 /// \brief The control law a certificate's trials ran (certificate.h): the plan's law with
 ///        part feedback, with joint feedback only, or the plan's inputs open loop.

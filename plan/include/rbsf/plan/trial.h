@@ -13,7 +13,13 @@
 /// with the fingers placed under the part (placement.h) at the plan's start_theta.
 ///
 /// Run (runTrial): steps of the plan's simulator over the plan and the schedule's settle
-/// hold. Each period the law gets the joints measured (true + Gaussian noise) and, at the
+/// hold. Faults (the cell's `faults` section, faults.h), when drawn: a mass error scales the
+/// plant's part mass; a dropout withholds the part poses taken in it; a spike makes one
+/// joint reading NaN or off by its size; a missed tick holds the last input one more period
+/// without running the law; a force cut clamps one finger's input to its cut limit. A trial
+/// with faults runs the executor's holds (ExecutionLimits hold_on_leaving, hold_on_faults:
+/// the cell's own safety) and records how it ended: done, held, lost or off (TrialEnd).
+/// Each period the law gets the joints measured (true + Gaussian noise) and, at the
 /// sensor's rate, the pose of the part's frame (true + noise) stamped when taken and
 /// handed over `latency` later. The input applied is the law's times the actuator gains;
 /// open loop it is the plan's feed-forward alone. The part's frame is the COM frame moved
@@ -42,6 +48,7 @@
 #include "rbsf/dynamics/core/trajectory_sample.h"
 #include "rbsf/plan/certificate_report.h"
 #include "rbsf/plan/plan.h"
+#include "rbsf/plan/trial_faults.h"
 
 namespace rbsf::plan {
 
@@ -78,9 +85,11 @@ struct TrialDraw {
   VecU actuator_gain;            ///< input j is applied times actuator_gain[j]
   std::uint64_t noise_seed = 0;  ///< of the sensors' noise
   bool noise = true;             ///< false: the sensors measure exactly
+  FaultDraw faults;              ///< drawn from the cell's faults section (none by default)
 };
 
-/// \brief Draw trial `index` of `seed` for `plan` on `cell` (file comment).
+/// \brief Draw trial `index` of `seed` for `plan` on `cell` (file comment). The faults
+///        come from a generator of their own, so a cell without them draws as before.
 /// \throws InputError when the plan's start cannot be placed on the cell at all.
 TrialDraw drawTrial(const Cell& cell, const Plan& plan, std::uint64_t seed, int index);
 

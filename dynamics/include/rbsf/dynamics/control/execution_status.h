@@ -14,12 +14,13 @@
 ///              at tens of m/s^2), or a relied-on contact open for contact_open_time;
 ///   kDone      the plan has ended and the part rests within the degraded band;
 ///   kDegraded  on the tube but not as planned: a deviation beyond the degraded band, an
-///              input at its limit, a stale part pose, a bad reading bridged, a sticking
-///              tip slipping, a planned slider stuck for slider_stuck_time;
+///              input at its limit, a stale part pose, a bad reading bridged, a late tick,
+///              a sticking tip slipping, a planned slider stuck for slider_stuck_time;
 ///   kOnPlan    none of these.
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "rbsf/dynamics/core/contact_roles.h"
 #include "rbsf/dynamics/core/mode_dynamics.h"
@@ -53,12 +54,17 @@ enum ExecutionFlag : std::uint32_t {
   kFlagBadPose = 1u << 8,       ///< a part pose since the last tick was not finite (dropped)
   kFlagBadTime = 1u << 9,       ///< this tick's time was not finite (the last input held)
   kFlagStrokeError = 1u << 10,  ///< a relied-on stroke or its rate beyond the degraded band
+  kFlagLateTick = 1u << 11,     ///< this tick came more than 1.5 periods after the last
+  kFlagJointJump = 1u << 12,    ///< this tick's joint reading jumped (a spike; bridged)
 };
 
 /// \brief "on plan", "degraded", "leaving", "holding", "done".
 const char* toString(ExecutionVerdict verdict);
 /// \brief "none", "leaving", "bad joints", "stale pose", "bad output", "commanded".
 const char* toString(HoldReason reason);
+/// \brief The flags set in `flags` as words ("; deviation, input at its limit"), "" when
+///        none. Allocates: for reports, not the loop.
+std::string flagsText(std::uint32_t flags);
 
 /// \brief The bands and times of the verdict (file comment). The defaults sit above what
 ///        certified runs of the default cell reach under the cell's noise and uncertainty
@@ -83,6 +89,9 @@ struct ExecutionLimits {
   /// \brief Non-finite joint readings are bridged by the last good one for at most this
   ///        long [s]; then the part is held (still on the last good reading).
   double bad_joint_time = 0.02;
+  /// \brief A reading that jumps from its prediction by more than this times the largest
+  ///        move its actuator can make in a period is a spike (plan_executor.h).
+  double jump_margin = 2.0;
   bool hold_on_leaving = true;  ///< hold at once when the verdict is kLeaving
   bool hold_on_faults = true;   ///< hold when a fault outlasts its time above
 };

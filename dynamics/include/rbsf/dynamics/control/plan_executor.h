@@ -6,7 +6,12 @@
 /// Each tick step(t, joints, tau, status):
 ///   - a non-finite joint reading never reaches the law: the last good one serves
 ///     (kFlagBadJoints) for bad_joint_time, then the part is held, still on it; before any
-///     good reading the input is the plan's feed-forward. A non-finite t holds the last
+///     good reading the input is the plan's feed-forward. So does a finite reading that
+///     jumped from its prediction (the last good reading moved on at the rate of the last
+///     two)
+///     by more than jump_margin times what its actuator at its limit moves the bare joint
+///     in the time since (plus 10 sigma of noise): a spike (kFlagJointJump); a second
+///     reading that agrees with it is taken. A non-finite t holds the last
 ///     input (kFlagBadTime). A non-finite part pose is dropped (kFlagBadPose).
 ///   - the law computes the input; were it not finite, the last good input is applied and
 ///     the part held (kBadOutput).
@@ -56,12 +61,23 @@ class PlanExecutor {
   void measure(double t, const VecU& joints, bool clamped);
   /// \brief The verdict from the measures, and the holds it calls for.
   void judge(double t);
+  /// \brief False for a finite reading that jumped from its prediction farther than an
+  ///        actuator can move its joint in the time since the last tick (a spike); a second
+  ///        reading that agrees with the first is taken (the joints did move).
+  bool plausible(double t, const VecU& joints);
 
   const FeedbackSchedule& schedule_;
   const ExecutionLimits limits_;
   ControlLaw law_;
   ExecutionStatus status_;
+  const double h_;
   VecU good_joints_, good_tau_;
+  VecU gate_;         ///< each reading's largest plausible jump in one period
+  VecU good_rate_;    ///< the rate of the last two good readings
+  double good_t_ = 0.0;  ///< time of the last good reading
+  VecU jump_;         ///< a reading held back as a jump
+  double jump_t_ = 0.0;
+  bool have_jump_ = false;
   bool have_joints_ = false, have_tau_ = false;
   double last_t_ = 0.0;
   bool started_ = false;

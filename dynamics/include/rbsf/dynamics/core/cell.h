@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rbsf/dynamics/core/faults.h"
 #include "rbsf/dynamics/core/motion_limits.h"
 #include "rbsf/dynamics/core/sensing.h"
 #include "rbsf/dynamics/core/shape.h"
@@ -55,6 +56,7 @@ struct Cell {
   Sensing sensing;             ///< what the cell measures (sensing.h; defaults when absent)
   Uncertainty uncertainty;     ///< what a plan must tolerate (sensing.h; defaults when absent)
   MotionLimits motion_limits;  ///< how fast a plan may move the part (motion_limits.h)
+  Faults faults;               ///< what trials draw beyond the uncertainty (faults.h; none)
   std::string name;            ///< file name or label, for messages
 
   /// \brief Number of fingers m.
