@@ -387,6 +387,26 @@ TEST(CellLoader, PartPoseNoneMeansOnlyTheJointsAreSensed) {
   EXPECT_NO_THROW(c.validate());
 }
 
+TEST(CellLoader, TheFaultsSectionIsReadKeyByKeyAndAbsentMeansNone) {
+  EXPECT_FALSE(parseCell(goodYaml()).faults.any());
+  const Cell c = parseCell(goodYaml() +
+                           "faults:\n  pose_dropouts: {rate: 0.5}\n"
+                           "  joint_spikes: {rate: 2, size: 0.002, nan: 1}\n"
+                           "  missed_ticks: {rate: 5}\n  force_cut: {chance: 0.25, to: 0.5}\n"
+                           "  mass_error: 0.1\n");
+  const Faults& f = c.faults;
+  EXPECT_DOUBLE_EQ(f.pose_dropouts.rate, 0.5);
+  EXPECT_DOUBLE_EQ(f.pose_dropouts.length, Faults{}.pose_dropouts.length);  // its default
+  EXPECT_DOUBLE_EQ(f.joint_spikes.size, 0.002);
+  EXPECT_DOUBLE_EQ(f.joint_spikes.nan_share, 1.0);
+  EXPECT_DOUBLE_EQ(f.missed_tick_rate, 5.0);
+  EXPECT_DOUBLE_EQ(f.force_cut_chance, 0.25);
+  EXPECT_DOUBLE_EQ(f.force_cut_to, 0.5);
+  EXPECT_DOUBLE_EQ(f.mass_error, 0.1);
+  EXPECT_TRUE(f.any());
+  EXPECT_TRUE(loadCell(std::string(RBSF_SOURCE_DIR) + "/cells/default_faults.yaml").faults.any());
+}
+
 TEST(CellLoader, BoundaryValuesOfSensingAndUncertaintyAreAccepted) {
   const Cell c = parseCell(goodYaml() +
                            "sensing: {part_pose: {rate: 10000, latency: 1, noise: [0, 0]}}\n"
@@ -635,6 +655,22 @@ std::vector<BadCase> badCases() {
        goodYaml() + "uncertainty: {friction: 0.1}\n",
        {"unknown key uncertainty.friction (expected one of: mass, inertia, com, static_friction, "
         "kinetic_friction, initial_position, initial_angle, actuator_gain)"}},
+      {"UnknownFaultKey",
+       goodYaml() + "faults: {dropouts: {rate: 1}}\n",
+       {"unknown key faults.dropouts (expected one of: pose_dropouts, joint_spikes, missed_ticks, "
+        "force_cut, mass_error)"}},
+      {"NegativeDropoutRate",
+       goodYaml() + "faults: {pose_dropouts: {rate: -1}}\n",
+       {"faults.pose_dropouts.rate must not be negative (got -1)"}},
+      {"SpikeNanShareAboveOne",
+       goodYaml() + "faults: {joint_spikes: {rate: 2, nan: 1.5}}\n",
+       {"faults.joint_spikes.nan must be at most 1 (got 1.5)"}},
+      {"UnknownForceCutKey",
+       goodYaml() + "faults: {force_cut: {probability: 1}}\n",
+       {"unknown key faults.force_cut.probability (expected one of: chance, to)"}},
+      {"MassErrorOne",
+       goodYaml() + "faults: {mass_error: 1.0}\n",
+       {"faults.mass_error must lie in [0, 1) (got 1)"}},
       {"UncertaintyNotAMapping",
        goodYaml() + "uncertainty: 0.05\n",
        {"uncertainty must be a mapping (got '0.05')"}},
