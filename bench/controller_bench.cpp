@@ -13,6 +13,7 @@
 #include <string>
 
 #include "rbsf/controller/reorientation_controller.h"
+#include "rbsf/dynamics/control/control_law.h"
 #include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_reference.h"
@@ -181,6 +182,50 @@ void BM_ControllerTrackLoadedPlan(benchmark::State& state) {
   state.counters["certified"] = r.certificate.certified ? 1.0 : 0.0;
 }
 BENCHMARK(BM_ControllerTrackLoadedPlan);
+
+/// The same ticks through track() with its status struct filled: what a loop that reads the
+/// status pays (the status is measured either way; this adds its copy).
+void BM_ControllerTrackLoadedPlanWithStatus(benchmark::State& state) {
+  const LoadedRun& r = loadedRun();
+  ReorientationController& c = *r.c;
+  VecU tau, joints(c.model().controlDim());
+  ExecutionStatus status;
+  const long period = static_cast<long>(r.trace.size());
+  long k = 0;
+  for (auto _ : state) {
+    const long n = k % period;
+    const VecQ& q = n == 0 ? r.plan.q0 : r.trace[static_cast<std::size_t>(n - 1)].q;
+    for (int j = 0; j < joints.size(); ++j) joints[j] = q[layout::inputToConfig(j)];
+    benchmark::DoNotOptimize(c.track(1e-3 * static_cast<double>(n), joints, tau, status));
+    benchmark::ClobberMemory();
+    ++k;
+  }
+  state.counters["leaving"] = status.verdict == ExecutionVerdict::kLeaving ? 1.0 : 0.0;
+}
+BENCHMARK(BM_ControllerTrackLoadedPlanWithStatus);
+
+/// The bare control law on the same plan and ticks, without the executor's guard, status and
+/// hold: track()'s cost without them (the difference is the executor's overhead).
+void BM_ControlLawLoadedPlan(benchmark::State& state) {
+  const LoadedRun& r = loadedRun();
+  const RbsfModel& model = r.c->model();
+  const FeedbackSchedule schedule(model, plan::makeReference(r.plan),
+                                  plan::lawSensing(model.cell().sensing, r.plan),
+                                  r.plan.simulator);
+  ControlLaw law(schedule);
+  VecU tau, joints(model.controlDim());
+  const long period = static_cast<long>(r.trace.size());
+  long k = 0;
+  for (auto _ : state) {
+    const long n = k % period;
+    const VecQ& q = n == 0 ? r.plan.q0 : r.trace[static_cast<std::size_t>(n - 1)].q;
+    for (int j = 0; j < joints.size(); ++j) joints[j] = q[layout::inputToConfig(j)];
+    benchmark::DoNotOptimize(law.compute(1e-3 * static_cast<double>(n), joints, tau));
+    benchmark::ClobberMemory();
+    ++k;
+  }
+}
+BENCHMARK(BM_ControlLawLoadedPlan);
 
 /// sample() while the worker searches (a request with micrometre tolerances that never
 /// finishes; cancelled at the end). On the 2-core VM the two threads share the cores with

@@ -6,9 +6,9 @@
 //   With --plan FILE the plan file is loaded instead (checked against the cell: a plan made
 //   for another cell is bad input, exit 2) and executed from step 2.
 //   1. The part rests on the fingers at --start; while the worker thread plans and
-//      certifies, the loop holds it with the control law on a plan of no motion (the start
-//      at rest with the holding tau: a hold is a plan like any other). The loop never waits
-//      for the planner.
+//      certifies, the loop holds it with the library's hold plan (planner::holdPlan: the
+//      contact set that holds it best, the other fingers lifted; a hold is a plan like any
+//      other) run by an executor. The loop never waits for the planner.
 //   2. When a plan is published, the loop executes it: each period (the plan's time step)
 //      the joints go to track(t, joints, tau, status) and each part pose to
 //      addPartPose(stamp, pose); the plant steps one period. Each change of the execution
@@ -30,15 +30,16 @@
 #include <thread>
 
 #include "rbsf/controller/reorientation_controller.h"
-#include "rbsf/dynamics/control/control_law.h"
+#include "rbsf/dynamics/control/plan_executor.h"
 #include "rbsf/dynamics/control/sensor_model.h"
 #include "rbsf/dynamics/core/errors.h"
-#include "rbsf/dynamics/core/holding.h"
 #include "rbsf/dynamics/core/placement.h"
 #include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/dynamics/core/state_layout.h"
 #include "rbsf/plan/plan_file.h"
 #include "rbsf/plan/plan_fit.h"
+#include "rbsf/plan/plan_reference.h"
+#include "rbsf/planner/support/hold_plan.h"
 #include "rbsf/tools/certificate_options.h"
 #include "rbsf/tools/cli_values.h"
 #include "rbsf/tools/tool_main.h"
@@ -75,19 +76,6 @@ class Pacer {
   double worst_ = 0.0, late_ = 0.0;
   long overruns_ = 0;
 };
-
-/// The law that holds the part at rest at q0 with the holding tau: a plan of no motion.
-ReferenceTrajectory holdReference(const RbsfModel& model, const VecQ& q0) {
-  ModelData data(model.numFingers());
-  model.updateContacts(q0, data);
-  const HoldingSolution holding = holdingTorques(model, q0, data);
-  if (!holding.feasible) throw InputError("--start: the fingers cannot hold the part at rest");
-  ReferenceTrajectory hold;
-  hold.addKnot(0.0, q0, VecQ::Zero(q0.size()));
-  hold.addKnot(0.1, q0, VecQ::Zero(q0.size()));
-  hold.addInputPiece(0.0, 0.1, holding.tau, VecU(), Phase::kC);
-  return hold;
-}
 
 int run(int argc, char** argv) {
   CLI::App app{
@@ -158,11 +146,22 @@ int run(int argc, char** argv) {
   const int m = model.numFingers();
   const double h = request.planner.simulator.time_step;
 
-  // The plant at the start, at rest; its sensors; the hold law.
+  // The plant at the start, at rest; its sensors; the hold: the library's hold plan (the
+  // contact set that holds the part best, the other fingers lifted) run by an executor.
   const VecQ q0 = restingConfiguration(model, request.problem.start, request.problem.start_theta);
-  const FeedbackSchedule hold(model, holdReference(model, q0), model.cell().sensing,
+  planner::HoldSettings hold_settings;
+  hold_settings.duration = 1.0;
+  hold_settings.simulator = request.planner.simulator;
+  plan::Plan hold_plan;
+  try {
+    hold_plan = planner::holdPlan(model, q0, hold_settings);
+  } catch (const InputError&) {
+    throw InputError("--start: the fingers cannot hold the part at rest");
+  }
+  const FeedbackSchedule hold(model, plan::makeReference(hold_plan),
+                              plan::lawSensing(model.cell().sensing, hold_plan),
                               request.planner.simulator);
-  ControlLaw holder(hold);
+  PlanExecutor holder(hold);
   const Simulator plant(model, request.planner.simulator);
   auto ws = std::make_unique<SimulatorWorkspace>(m);
   SimState state(q0, VecQ::Zero(q0.size()));
@@ -194,7 +193,7 @@ int run(int argc, char** argv) {
       sensors.joints(state.q, joints);
       sensors.partPose(tick, state.q,
                        [&](double stamp, const Pose& p) { holder.addPartPose(stamp, p); });
-      holder.compute(static_cast<double>(tick) * h, joints, tau);
+      holder.step(static_cast<double>(tick) * h, joints, tau);
       plant.step(state, tau, *ws);
       hold_error = std::max(hold_error, (state.q - q0).head<3>().cwiseAbs().maxCoeff());
       ++tick;
