@@ -210,8 +210,7 @@ void BM_ControlLawLoadedPlan(benchmark::State& state) {
   const LoadedRun& r = loadedRun();
   const RbsfModel& model = r.c->model();
   const FeedbackSchedule schedule(model, plan::makeReference(r.plan),
-                                  plan::lawSensing(model.cell().sensing, r.plan),
-                                  r.plan.simulator);
+                                  plan::lawSensing(model.cell().sensing, r.plan), r.plan.simulator);
   ControlLaw law(schedule);
   VecU tau, joints(model.controlDim());
   const long period = static_cast<long>(r.trace.size());

@@ -240,12 +240,12 @@ int run(int argc, char** argv) {
     ctl.track(t, joints, tau, status);
     if (status.verdict != shown) {
       if (++changes <= 20)
-        std::printf("status     t = %.3f s: %s%s%s (part %.1f mm, %.2f deg off; stroke %.1f mm)%s\n",
-                    t, toString(status.verdict),
-                    status.hold_reason != HoldReason::kNone ? ", held: " : "",
-                    status.hold_reason != HoldReason::kNone ? toString(status.hold_reason) : "",
-                    1e3 * status.position_deviation, status.angle_deviation,
-                    1e3 * status.stroke_deviation, flagsText(status.flags).c_str());
+        std::printf(
+            "status     t = %.3f s: %s%s%s (part %.1f mm, %.2f deg off; stroke %.1f mm)%s\n", t,
+            toString(status.verdict), status.hold_reason != HoldReason::kNone ? ", held: " : "",
+            status.hold_reason != HoldReason::kNone ? toString(status.hold_reason) : "",
+            1e3 * status.position_deviation, status.angle_deviation, 1e3 * status.stroke_deviation,
+            flagsText(status.flags).c_str());
       shown = status.verdict;
     }
     plant.step(state, tau, *ws);

@@ -70,10 +70,10 @@ struct PlanRunner::Impl {
   const FeedbackSettings feedback;
   const ExecutionLimits limits;
   detail::SnapshotSlots<PublishedPlan> slots;
-  std::mutex publishing;         // serialises load() and publish()
-  std::uint64_t next_id = 1;     // under `publishing`
-  std::uint64_t run_id = 0;      // loop thread: the plan whose run step() last advanced
-  bool restart = false;          // loop thread: start() asked
+  std::mutex publishing;      // serialises load() and publish()
+  std::uint64_t next_id = 1;  // under `publishing`
+  std::uint64_t run_id = 0;   // loop thread: the plan whose run step() last advanced
+  bool restart = false;       // loop thread: start() asked
   std::atomic<std::uint64_t> held_seq{0};
   std::atomic<bool> held_valid{false};
   std::array<std::atomic<double>, 4> held{};

@@ -14,8 +14,8 @@ bool same(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, s
 std::string differs(const std::string& what, double plan, double cell, const char* unit,
                     const char* made = "the plan was made for another cell: ") {
   std::ostringstream s;
-  s << made << what << " is " << plan << (*unit != 0 ? " " : "") << unit << " in the plan, "
-    << cell << (*unit != 0 ? " " : "") << unit << " in this cell";
+  s << made << what << " is " << plan << (*unit != 0 ? " " : "") << unit << " in the plan, " << cell
+    << (*unit != 0 ? " " : "") << unit << " in this cell";
   return s.str();
 }
 
@@ -103,15 +103,16 @@ std::string certificateCellMismatch(const RbsfModel& model, const PlanRecord& re
     return differs("sensing.joints noise (angle)", cs.joints.angle_noise, law.joints.angle_noise,
                    "rad", drawn);
   if (!same(cs.joints.stroke_noise, law.joints.stroke_noise))
-    return differs("sensing.joints noise (stroke)", cs.joints.stroke_noise,
-                   law.joints.stroke_noise, "m", drawn);
+    return differs("sensing.joints noise (stroke)", cs.joints.stroke_noise, law.joints.stroke_noise,
+                   "m", drawn);
   if (cs.part_pose.present != law.part_pose.present)
     return std::string(drawn) + "its cell " + (cs.part_pose.present ? "saw" : "did not see") +
            " the part's pose, this cell " + (law.part_pose.present ? "sees" : "does not see") +
            " it";
   if (law.part_pose.present) {
     const PartPoseSensing &p = cs.part_pose, &q = law.part_pose;
-    if (!same(p.rate, q.rate)) return differs("sensing.part_pose rate", p.rate, q.rate, "Hz", drawn);
+    if (!same(p.rate, q.rate))
+      return differs("sensing.part_pose rate", p.rate, q.rate, "Hz", drawn);
     if (!same(p.latency, q.latency))
       return differs("sensing.part_pose latency", p.latency, q.latency, "s", drawn);
     if (!same(p.position_noise, q.position_noise))

@@ -75,8 +75,8 @@ TrialDraw drawTrial(const Cell& cell, const Plan& plan, std::uint64_t seed, int 
   d.noise_seed = rng();
   // Over the plan and a generous settle hold: events past the run are never reached.
   const double h = plan.simulator.time_step;
-  d.faults = drawFaults(cell.faults, plan, seed, index, std::lround((plan.duration() + 5.0) / h),
-                        h, static_cast<int>(plan.q0.size()) - 3);
+  d.faults = drawFaults(cell.faults, plan, seed, index, std::lround((plan.duration() + 5.0) / h), h,
+                        static_cast<int>(plan.q0.size()) - 3);
   c.object.mass *= 1.0 + d.faults.mass_error;
   const RbsfModel plant(c);
   const double theta = plan.q0[layout::kTheta];
@@ -148,7 +148,8 @@ class TrialRun {
         sensors_(schedule.sensing(), h_, draw.noise_seed, draw.noise, draw.com_offset),
         camera_(schedule.model().cell().sensing, h_, splitmix(draw.noise_seed), draw.noise,
                 draw.com_offset),
-        status_camera_(!schedule.partFeedback() && schedule.model().cell().sensing.part_pose.present),
+        status_camera_(!schedule.partFeedback() &&
+                       schedule.model().cell().sensing.part_pose.present),
         steps_(std::lround(schedule.holdEnd() / h_)),
         rest_steps_(std::max(1L, std::min(steps_, std::lround(s.rest_window / h_)))),
         joints_(nu_) {}
@@ -309,8 +310,8 @@ void TrialRun::watch(const ExecutionStatus& st) {
     r_.hold_time = st.hold_time;
   }
   r_.final_verdict = st.verdict;
-  if (r_.report_time < 0.0 && (st.verdict == ExecutionVerdict::kLeaving ||
-                               st.verdict == ExecutionVerdict::kHolding))
+  if (r_.report_time < 0.0 &&
+      (st.verdict == ExecutionVerdict::kLeaving || st.verdict == ExecutionVerdict::kHolding))
     r_.report_time = st.plan_time;
   if (r_.fault_time >= 0.0 && r_.fault_seen_time < 0.0 && st.plan_time >= r_.fault_time &&
       (st.flags & fault_flags_) != 0)

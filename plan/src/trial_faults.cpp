@@ -73,7 +73,8 @@ void FaultInjector::corruptJoints(long n, VecU& joints) {
   while (next_spike_ < d_.spikes.size() && d_.spikes[next_spike_] < n) ++next_spike_;
   for (std::size_t i = next_spike_; i < d_.spikes.size() && d_.spikes[i] == n; ++i) {
     const int j = d_.spike_joints[i];
-    joints[j] = std::isnan(d_.spike_values[i]) ? d_.spike_values[i] : joints[j] + d_.spike_values[i];
+    joints[j] =
+        std::isnan(d_.spike_values[i]) ? d_.spike_values[i] : joints[j] + d_.spike_values[i];
   }
 }
 

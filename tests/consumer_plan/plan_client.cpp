@@ -45,7 +45,8 @@ int main(int argc, char** argv) {
     const long ticks = std::lround((plan.duration() + settle) / h);
     for (long k = 0; k < ticks; ++k) {
       sensors.joints(state.q, joints);
-      sensors.partPose(k, state.q, [&](double s, const rbsf::Pose& p) { runner.addPartPose(s, p); });
+      sensors.partPose(k, state.q,
+                       [&](double s, const rbsf::Pose& p) { runner.addPartPose(s, p); });
       runner.step(h * static_cast<double>(k), joints, tau, &status);
       held += status.verdict == rbsf::ExecutionVerdict::kHolding;
       sim.step(state, tau, ws);

@@ -46,8 +46,7 @@ const std::string& turnFile() {
     if (!c.plan(r)) throw std::runtime_error("plan() refused");
     c.wait();
     if (c.status() != ControllerStatus::kReady) throw std::runtime_error(c.result().message);
-    const std::string file =
-        ::testing::TempDir() + "turn30_" + std::to_string(getpid()) + ".json";
+    const std::string file = ::testing::TempDir() + "turn30_" + std::to_string(getpid()) + ".json";
     plan::writePlanJson(c.result().record, file);
     return file;
   }();
@@ -150,8 +149,8 @@ TEST(ExecutionStatus, APartPushedOffItsTubeIsReportedWithin20msAndHeldOnTheFinge
   // Held from the next tick, for 5 s: on the fingers all along, at rest at the end, near
   // where it was reported.
   const VecQ at_report = run.state.q;
-  for (long n = std::lround(left.reported / run.h) + 1, end = n + std::lround(5.0 / run.h);
-       n < end; ++n) {
+  for (long n = std::lround(left.reported / run.h) + 1, end = n + std::lround(5.0 / run.h); n < end;
+       ++n) {
     ASSERT_TRUE(run.tick(n));
     ASSERT_GE(run.touching(), 2) << "t = " << n * run.h;
     ASSERT_EQ(run.status.verdict, ExecutionVerdict::kHolding);
@@ -250,7 +249,7 @@ TEST(ExecutionStatus, NonFiniteReadingsNeverReachTheLaw) {
       joints[j] = ref.q[layout::inputToConfig(j)] + 2e-5 * std::sin(0.01 * n + j);
     if (n < bad) last = joints;
     VecU reading = joints;
-    if (n == bad) reading[1] = nan;                        // one spike
+    if (n == bad) reading[1] = nan;                                          // one spike
     if (n >= bad + 5) reading[2] = std::numeric_limits<double>::infinity();  // then a dead sensor
     if (n == bad + 2) guarded.addPartPose(n * h, Pose{nan, 0.0, 0.0});
     guarded.step(n * h, reading, tau);

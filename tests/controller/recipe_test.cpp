@@ -2,7 +2,7 @@
 // lines below is the page's block, character for character (ThePageShowsThisCode). Run on
 // the project's simulator as the cell, with exact sensors, it is the certificate's trial
 // without draws, step for step: on a support plan (joint feedback) to its end, on a
-// kinodynamic plan (part poses late at 100 Hz) until the facade's status holds the part
+// kinodynamic plan (part poses late at 100 Hz) until the executor's status holds the part
 // (the trial's law runs on); a plan for another
 // cell stops it at loadFile().
 #include <gtest/gtest.h>
@@ -17,10 +17,10 @@
 #include <vector>
 
 #include "rbsf/controller/reorientation_controller.h"
-#include "rbsf/executor/plan_runner.h"
 #include "rbsf/dynamics/control/sensor_model.h"
 #include "rbsf/dynamics/core/simulator.h"
 #include "rbsf/dynamics/io/cell_file.h"
+#include "rbsf/executor/plan_runner.h"
 #include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_reference.h"
 #include "rbsf/plan/trial.h"
@@ -189,18 +189,19 @@ TEST(ExecutionRecipe, RunsAPartFeedbackPlanAsItsTrialStepForStep) {
       ::testing::TempDir() + "recipe_kinodynamic_" + std::to_string(getpid()) + ".json";
   plan::writePlanJson(record, file);
   std::vector<TrajectorySample> trace;
-  const plan::TrialOutcome o = plan::traceTrial(model, plan, plan::CertificateSettings{}, -1, trace);
+  const plan::TrialOutcome o =
+      plan::traceTrial(model, plan, plan::CertificateSettings{}, -1, trace);
   ASSERT_GT(trace.size(), 100u);
   SimulatedCell cell(model, plan);
   ASSERT_EQ(runPlanFile(kDefaultCell, file, cell, 0.0), 0);
   ASSERT_GE(cell.states().size(), trace.size());
-  // The facade holds the part from the tick after its status first says "leaving"; the
+  // The executor holds the part from the tick after its status first says "leaving"; the
   // trial's law does not (a certificate judges the law): the same run up to that tick.
   const double h = plan.simulator.time_step;
-  const std::size_t same = o.leaving_time < 0.0
-                               ? trace.size()
-                               : std::min(trace.size(), static_cast<std::size_t>(
-                                                            std::lround(o.leaving_time / h) + 1));
+  const std::size_t same =
+      o.leaving_time < 0.0
+          ? trace.size()
+          : std::min(trace.size(), static_cast<std::size_t>(std::lround(o.leaving_time / h) + 1));
   ASSERT_GT(same, 100u);
   double worst = 0.0;
   for (std::size_t k = 0; k < same; ++k)

@@ -126,9 +126,9 @@ TEST(FaultTrials, EachKindOfFaultRunsAlone) {
   const auto kinds = faultKinds(cell);
   ASSERT_EQ(kinds.size(), 5u);
   for (const auto& [name, alone] : kinds) {
-    int declared = (alone.faults.pose_dropouts.rate > 0.0) + (alone.faults.joint_spikes.rate > 0.0) +
-                   (alone.faults.missed_tick_rate > 0.0) + (alone.faults.force_cut_chance > 0.0) +
-                   (alone.faults.mass_error > 0.0);
+    int declared = (alone.faults.pose_dropouts.rate > 0.0) +
+                   (alone.faults.joint_spikes.rate > 0.0) + (alone.faults.missed_tick_rate > 0.0) +
+                   (alone.faults.force_cut_chance > 0.0) + (alone.faults.mass_error > 0.0);
     EXPECT_EQ(declared, 1) << name;
     EXPECT_EQ(alone.object.mass, cell.object.mass);
   }

@@ -43,10 +43,10 @@ const char* toString(HoldReason reason) {
 
 std::string flagsText(std::uint32_t flags) {
   static const char* const kWords[] = {
-      "deviation",         "off the tube",         "relied-on contact open",
-      "slider stuck",      "sticking tip slipping", "input at its limit",
-      "stale part pose",   "bad joint reading",    "bad part pose",
-      "bad time",          "stroke error",         "late tick",
+      "deviation",       "off the tube",          "relied-on contact open",
+      "slider stuck",    "sticking tip slipping", "input at its limit",
+      "stale part pose", "bad joint reading",     "bad part pose",
+      "bad time",        "stroke error",          "late tick",
       "joint jump"};
   std::string out;
   for (int b = 0; b < static_cast<int>(sizeof kWords / sizeof kWords[0]); ++b)
@@ -281,10 +281,9 @@ void PlanExecutor::judge(double t) {
     s.verdict = ExecutionVerdict::kHolding;
     return;
   }
-  const std::uint32_t degrading = kFlagDeviation | kFlagSaturated | kFlagStalePose |
-                                  kFlagBadJoints | kFlagBadPose | kFlagTipSlipping |
-                                  kFlagSliderStuck | kFlagStrokeError | kFlagContactOpen |
-                                  kFlagLateTick;
+  const std::uint32_t degrading =
+      kFlagDeviation | kFlagSaturated | kFlagStalePose | kFlagBadJoints | kFlagBadPose |
+      kFlagTipSlipping | kFlagSliderStuck | kFlagStrokeError | kFlagContactOpen | kFlagLateTick;
   if (leaving)
     s.verdict = ExecutionVerdict::kLeaving;
   else if (t >= schedule_.planEnd() && (s.flags & degrading) == 0)

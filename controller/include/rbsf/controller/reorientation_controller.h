@@ -48,8 +48,8 @@
 #include "rbsf/dynamics/core/cell.h"
 #include "rbsf/dynamics/core/model.h"
 #include "rbsf/dynamics/core/placement.h"
-#include "rbsf/plan/certificate.h"
 #include "rbsf/executor/plan_runner.h"
+#include "rbsf/plan/certificate.h"
 #include "rbsf/plan/plan_file.h"
 #include "rbsf/planner/pipeline/reorientation_pipeline.h"
 #include "rbsf/planner/planner_settings.h"
@@ -164,15 +164,13 @@ class ReorientationController {
   ///        (`options`) when its friction or its certificate's draws are another cell's
   ///        (certificateCellMismatch), and when it carries no certificate or a failed one.
   ///        Not real-time: it builds the schedule (tens of milliseconds for a 5 s plan).
-  bool load(const plan::PlanRecord& record, std::string* why,
-            const executor::LoadOptions& options);
+  bool load(const plan::PlanRecord& record, std::string* why, const executor::LoadOptions& options);
   /// \brief load() with options{accept_uncertified}.
   bool load(const plan::PlanRecord& record, std::string* why = nullptr,
             bool accept_uncertified = false);
   /// \brief load() of a plan file (plan_file.h readPlanJson); a file that cannot be read or
   ///        parsed is refused with the reader's message.
-  bool loadFile(const std::string& path, std::string* why,
-                const executor::LoadOptions& options);
+  bool loadFile(const std::string& path, std::string* why, const executor::LoadOptions& options);
   /// \brief loadFile() with options{accept_uncertified}.
   bool loadFile(const std::string& path, std::string* why = nullptr,
                 bool accept_uncertified = false);

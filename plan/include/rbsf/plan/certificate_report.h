@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <string>
 
-#include "rbsf/dynamics/control/execution_status.h"
 #include <string_view>
+#include "rbsf/dynamics/control/execution_status.h"
 
 #include "rbsf/dynamics/core/sensing.h"
 #include "rbsf/plan/plan_holding.h"

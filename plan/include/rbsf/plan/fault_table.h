@@ -14,14 +14,14 @@ namespace rbsf::plan {
 
 /// \brief The trials of one kind of fault, and how they ended (TrialEnd).
 struct FaultRow {
-  std::string kind;            ///< "pose dropouts", ..., "all faults"
+  std::string kind;  ///< "pose dropouts", ..., "all faults"
   int trials = 0;
   int done = 0, held = 0, lost = 0, off = 0;
-  int lost_unreported = 0;     ///< lost without leaving or holding reported within 50 ms
-  int with_fault = 0;          ///< trials in which a fault acted
-  int seen = 0;                ///< ... and the status flagged it
-  double median_seen = 0.0;    ///< median time from the fault to the flag [s]
-  double max_seen = 0.0;       ///< largest [s]
+  int lost_unreported = 0;   ///< lost without leaving or holding reported within 50 ms
+  int with_fault = 0;        ///< trials in which a fault acted
+  int seen = 0;              ///< ... and the status flagged it
+  double median_seen = 0.0;  ///< median time from the fault to the flag [s]
+  double max_seen = 0.0;     ///< largest [s]
   std::vector<std::pair<HoldReason, int>> hold_reasons;  ///< held trials by reason
 };
 

@@ -30,7 +30,6 @@ struct FaultDraw {
   bool any() const { return firstStep() >= 0; }
 };
 
-
 /// \brief The faults of trial `index` of `seed` over `steps` steps of h (faults.h), from a
 ///        generator of their own; `inputs` = m + 1.
 FaultDraw drawFaults(const Faults& faults, const Plan& plan, std::uint64_t seed, int index,

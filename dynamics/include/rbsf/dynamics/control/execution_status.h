@@ -33,12 +33,12 @@ enum class ExecutionVerdict : std::uint8_t { kOnPlan, kDegraded, kLeaving, kHold
 
 /// \brief Why the part is held.
 enum class HoldReason : std::uint8_t {
-  kNone,        ///< not held
-  kLeaving,     ///< the run was leaving the plan's tube
-  kBadJoints,   ///< joint readings were not finite for longer than bad_joint_time
-  kStalePose,   ///< a part-feedback run had no part pose for longer than stale_pose_hold
-  kBadOutput,   ///< the law's input was not finite (the last good input was applied)
-  kCommanded    ///< the cell asked (hold())
+  kNone,       ///< not held
+  kLeaving,    ///< the run was leaving the plan's tube
+  kBadJoints,  ///< joint readings were not finite for longer than bad_joint_time
+  kStalePose,  ///< a part-feedback run had no part pose for longer than stale_pose_hold
+  kBadOutput,  ///< the law's input was not finite (the last good input was applied)
+  kCommanded   ///< the cell asked (hold())
 };
 
 /// \brief What a tick found wrong (bits of ExecutionStatus::flags).
@@ -75,12 +75,12 @@ struct ExecutionLimits {
   double degraded_angle = 2.0 * M_PI / 180.0;  ///< part angle deviation [rad]
   double leaving_position = 0.03;              ///< [m]
   double leaving_angle = 8.0 * M_PI / 180.0;   ///< [rad]
-  double degraded_stroke = 0.01;  ///< a relied-on finger's stroke from its reference [m]
-  double leaving_stroke = 0.03;   ///< [m]
+  double degraded_stroke = 0.01;        ///< a relied-on finger's stroke from its reference [m]
+  double leaving_stroke = 0.03;         ///< [m]
   double degraded_stroke_speed = 0.05;  ///< its rate from the reference's [m/s]
   double leaving_stroke_speed = 0.3;    ///< [m/s]
-  double contact_open_time = 0.02;   ///< a relied-on contact open this long: leaving [s]
-  double slider_stuck_time = 0.3;    ///< a planned slider stuck this long: degraded [s]
+  double contact_open_time = 0.02;      ///< a relied-on contact open this long: leaving [s]
+  double slider_stuck_time = 0.3;       ///< a planned slider stuck this long: degraded [s]
   /// \brief A part pose is stale when its stamp is older than this [s] (the sensor's
   ///        latency plus a few periods).
   double stale_pose_time = 0.06;
@@ -105,19 +105,19 @@ struct ExecutionStatus {
   /// \brief Largest relied-on |stroke rate - reference| in the estimate [m/s]: a finger
   ///        that loses its load accelerates at its force over its mass.
   double stroke_speed_deviation = 0.0;
-  ContactRoles planned{};           ///< the roles the law keeps (finger order)
-  ContactModes estimated{};         ///< the estimate's touching, sticking, sliding
-  std::uint32_t contact_open = 0;   ///< relied-on contacts open (bit i: finger i)
-  std::uint32_t slider_stuck = 0;   ///< planned sliders not yet loose
-  std::uint32_t tip_slipping = 0;   ///< planned sticking tips slipping
-  bool saturated = false;           ///< an input at its limit this tick
-  bool pose_seen = false;           ///< a part pose has arrived in this run
-  double pose_age = 0.0;            ///< t - the newest pose's stamp [s] (when pose_seen)
-  std::uint64_t bad_readings = 0;   ///< non-finite joint readings, poses and times so far
-  std::uint32_t flags = 0;          ///< ExecutionFlag bits of this tick
+  ContactRoles planned{};          ///< the roles the law keeps (finger order)
+  ContactModes estimated{};        ///< the estimate's touching, sticking, sliding
+  std::uint32_t contact_open = 0;  ///< relied-on contacts open (bit i: finger i)
+  std::uint32_t slider_stuck = 0;  ///< planned sliders not yet loose
+  std::uint32_t tip_slipping = 0;  ///< planned sticking tips slipping
+  bool saturated = false;          ///< an input at its limit this tick
+  bool pose_seen = false;          ///< a part pose has arrived in this run
+  double pose_age = 0.0;           ///< t - the newest pose's stamp [s] (when pose_seen)
+  std::uint64_t bad_readings = 0;  ///< non-finite joint readings, poses and times so far
+  std::uint32_t flags = 0;         ///< ExecutionFlag bits of this tick
   ExecutionVerdict verdict = ExecutionVerdict::kOnPlan;
   HoldReason hold_reason = HoldReason::kNone;
-  double hold_time = 0.0;           ///< plan time the hold began [s] (when holding)
+  double hold_time = 0.0;  ///< plan time the hold began [s] (when holding)
 };
 
 }  // namespace rbsf

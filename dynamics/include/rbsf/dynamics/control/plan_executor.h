@@ -72,10 +72,10 @@ class PlanExecutor {
   ExecutionStatus status_;
   const double h_;
   VecU good_joints_, good_tau_;
-  VecU gate_;         ///< each reading's largest plausible jump in one period
-  VecU good_rate_;    ///< the rate of the last two good readings
+  VecU gate_;            ///< each reading's largest plausible jump in one period
+  VecU good_rate_;       ///< the rate of the last two good readings
   double good_t_ = 0.0;  ///< time of the last good reading
-  VecU jump_;         ///< a reading held back as a jump
+  VecU jump_;            ///< a reading held back as a jump
   double jump_t_ = 0.0;
   bool have_jump_ = false;
   bool have_joints_ = false, have_tau_ = false;
