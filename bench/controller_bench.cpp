@@ -159,6 +159,15 @@ const LoadedRun& loadedRun() {
   return *run;
 }
 
+/// Tick k of the loaded run's loop: the joints of its nominal trial at that tick (the plan's
+/// start at tick 0 of each pass) and the plan time, in ms steps.
+double loadedTick(const LoadedRun& r, long k, VecU& joints) {
+  const long n = k % static_cast<long>(r.trace.size());
+  const VecQ& q = n == 0 ? r.plan.q0 : r.trace[static_cast<std::size_t>(n - 1)].q;
+  for (int j = 0; j < joints.size(); ++j) joints[j] = q[layout::inputToConfig(j)];
+  return 1e-3 * static_cast<double>(n);
+}
+
 /// track() on the loaded plan as the 1 kHz loop calls it: t advancing by 1 ms through the
 /// plan and its hold, the joints those of the nominal trial at t (a reading the estimate
 /// agrees with); the law restarts with each pass. Counters: the run above.
@@ -166,15 +175,11 @@ void BM_ControllerTrackLoadedPlan(benchmark::State& state) {
   const LoadedRun& r = loadedRun();
   ReorientationController& c = *r.c;
   VecU tau, joints(c.model().controlDim());
-  const long period = static_cast<long>(r.trace.size());
   long k = 0;
   for (auto _ : state) {
-    const long n = k % period;
-    const VecQ& q = n == 0 ? r.plan.q0 : r.trace[static_cast<std::size_t>(n - 1)].q;
-    for (int j = 0; j < joints.size(); ++j) joints[j] = q[layout::inputToConfig(j)];
-    benchmark::DoNotOptimize(c.track(1e-3 * static_cast<double>(n), joints, tau));
+    const double t = loadedTick(r, k++, joints);
+    benchmark::DoNotOptimize(c.track(t, joints, tau));
     benchmark::ClobberMemory();
-    ++k;
   }
   state.counters["vs_trial"] = r.state_difference;
   state.counters["goal_m"] = r.goal_distance;
@@ -190,15 +195,11 @@ void BM_ControllerTrackLoadedPlanWithStatus(benchmark::State& state) {
   ReorientationController& c = *r.c;
   VecU tau, joints(c.model().controlDim());
   ExecutionStatus status;
-  const long period = static_cast<long>(r.trace.size());
   long k = 0;
   for (auto _ : state) {
-    const long n = k % period;
-    const VecQ& q = n == 0 ? r.plan.q0 : r.trace[static_cast<std::size_t>(n - 1)].q;
-    for (int j = 0; j < joints.size(); ++j) joints[j] = q[layout::inputToConfig(j)];
-    benchmark::DoNotOptimize(c.track(1e-3 * static_cast<double>(n), joints, tau, status));
+    const double t = loadedTick(r, k++, joints);
+    benchmark::DoNotOptimize(c.track(t, joints, tau, status));
     benchmark::ClobberMemory();
-    ++k;
   }
   state.counters["leaving"] = status.verdict == ExecutionVerdict::kLeaving ? 1.0 : 0.0;
 }
@@ -213,15 +214,11 @@ void BM_ControlLawLoadedPlan(benchmark::State& state) {
                                   plan::lawSensing(model.cell().sensing, r.plan), r.plan.simulator);
   ControlLaw law(schedule);
   VecU tau, joints(model.controlDim());
-  const long period = static_cast<long>(r.trace.size());
   long k = 0;
   for (auto _ : state) {
-    const long n = k % period;
-    const VecQ& q = n == 0 ? r.plan.q0 : r.trace[static_cast<std::size_t>(n - 1)].q;
-    for (int j = 0; j < joints.size(); ++j) joints[j] = q[layout::inputToConfig(j)];
-    benchmark::DoNotOptimize(law.compute(1e-3 * static_cast<double>(n), joints, tau));
+    const double t = loadedTick(r, k++, joints);
+    benchmark::DoNotOptimize(law.compute(t, joints, tau));
     benchmark::ClobberMemory();
-    ++k;
   }
 }
 BENCHMARK(BM_ControlLawLoadedPlan);

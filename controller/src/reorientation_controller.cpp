@@ -204,13 +204,7 @@ bool ReorientationController::loadFile(const std::string& path, std::string* why
 bool ReorientationController::loadFile(const std::string& path, std::string* why,
                                        const executor::LoadOptions& options) {
   plan::PlanRecord record;
-  try {
-    record = plan::readPlanJson(path);
-  } catch (const InputError& e) {
-    if (why != nullptr) *why = e.what();
-    return false;
-  }
-  return load(record, why, options);
+  return executor::readPlanFile(path, record, why) && load(record, why, options);
 }
 
 ReorientationController::ReorientationController(const std::string& cell_file,

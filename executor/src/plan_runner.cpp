@@ -119,16 +119,20 @@ bool PlanRunner::load(const plan::PlanRecord& record, std::string* why, const Lo
   return true;
 }
 
-bool PlanRunner::loadFile(const std::string& path, std::string* why, const LoadOptions& options,
-                          std::uint64_t* id) {
-  plan::PlanRecord record;
+bool readPlanFile(const std::string& path, plan::PlanRecord& record, std::string* why) {
   try {
     record = plan::readPlanJson(path);
   } catch (const InputError& e) {
     if (why != nullptr) *why = e.what();
     return false;
   }
-  return load(record, why, options, id);
+  return true;
+}
+
+bool PlanRunner::loadFile(const std::string& path, std::string* why, const LoadOptions& options,
+                          std::uint64_t* id) {
+  plan::PlanRecord record;
+  return readPlanFile(path, record, why) && load(record, why, options, id);
 }
 
 std::uint64_t PlanRunner::publish(const plan::Plan& plan) {

@@ -18,14 +18,6 @@ namespace rbsf::plan {
 
 namespace {
 
-/// SplitMix64: decorrelates the generators of neighbouring trials and seeds.
-std::uint64_t splitmix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
 /// The true COM pose of a part whose frame is at `frame` and whose COM sits at d in it.
 Pose comPose(const Pose& frame, const Vec2& d) {
   const Vec2 c = Vec2(frame.x, frame.y) + rotate(frame.phi, d);
@@ -47,7 +39,7 @@ TrialDraw nominalDraw(const Cell& cell, const Plan& plan) {
 }
 
 TrialDraw drawTrial(const Cell& cell, const Plan& plan, std::uint64_t seed, int index) {
-  std::mt19937_64 rng(splitmix(splitmix(seed) ^ static_cast<std::uint64_t>(index)));
+  std::mt19937_64 rng(splitMix64(splitMix64(seed) ^ static_cast<std::uint64_t>(index)));
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const Uncertainty& un = cell.uncertainty;
   TrialDraw d;
@@ -146,7 +138,7 @@ class TrialRun {
         faults_(draw.faults),
         fault_flags_(flagsOf(draw.faults)),
         sensors_(schedule.sensing(), h_, draw.noise_seed, draw.noise, draw.com_offset),
-        camera_(schedule.model().cell().sensing, h_, splitmix(draw.noise_seed), draw.noise,
+        camera_(schedule.model().cell().sensing, h_, splitMix64(draw.noise_seed), draw.noise,
                 draw.com_offset),
         status_camera_(!schedule.partFeedback() &&
                        schedule.model().cell().sensing.part_pose.present),

@@ -7,17 +7,12 @@
 
 namespace rbsf::plan {
 
-namespace {
-
-/// SplitMix64, as the trial's own draw mixes its seeds.
-std::uint64_t mix(std::uint64_t x) {
+std::uint64_t splitMix64(std::uint64_t x) {
   x += 0x9e3779b97f4a7c15ULL;
   x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
   x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
   return x ^ (x >> 31);
 }
-
-}  // namespace
 
 long FaultDraw::firstStep() const {
   long first = mass_error != 0.0 ? 0 : -1;
@@ -35,7 +30,8 @@ FaultDraw drawFaults(const Faults& f, const Plan& plan, std::uint64_t seed, int 
                      double h, int inputs) {
   FaultDraw d;
   if (!f.any()) return d;
-  std::mt19937_64 rng(mix(mix(seed ^ 0xfa017ULL) ^ static_cast<std::uint64_t>(index)));
+  std::mt19937_64 rng(
+      splitMix64(splitMix64(seed ^ 0xfa017ULL) ^ static_cast<std::uint64_t>(index)));
   std::uniform_real_distribution<double> u(0.0, 1.0);
   // Poisson events at `rate` per second: exponential gaps.
   auto events = [&](double rate, std::vector<long>& at) {

@@ -4,12 +4,10 @@
 // where the plan was; non-finite readings never reach the law; certified trials never say
 // "leaving".
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <stdexcept>
 #include <string>
 
 #include "rbsf/controller/reorientation_controller.h"
@@ -31,25 +29,7 @@ namespace {
 /// The -30 degree support plan of the default cell as the pipeline writes it (refined where
 /// at least as good), in a file, once per test binary.
 const std::string& turnFile() {
-  static const std::string path = [] {
-    ReorientationController c(kDefaultCell);
-    ReorientationRequest r;
-    r.problem.start = {0.1, 0.40, 0.0};
-    r.problem.goal = {0.1, 0.40, -30.0 * M_PI / 180.0};
-    r.method = planner::PipelineMethod::kAuto;
-    r.optimize = true;
-    r.planner = rbsf::test::withoutClock(r.planner);
-    r.planner.max_propagations = 200000;
-    r.support.max_expansions = 100000;
-    r.certificate.trials = 8;
-    r.certificate.required_rate = 0.6;
-    if (!c.plan(r)) throw std::runtime_error("plan() refused");
-    c.wait();
-    if (c.status() != ControllerStatus::kReady) throw std::runtime_error(c.result().message);
-    const std::string file = ::testing::TempDir() + "turn30_" + std::to_string(getpid()) + ".json";
-    plan::writePlanJson(c.result().record, file);
-    return file;
-  }();
+  static const std::string path = plannedFile(-30.0, true, 8, 0.6, "turn30");
   return path;
 }
 

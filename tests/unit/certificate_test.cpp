@@ -23,15 +23,8 @@
 namespace rbsf::plan {
 namespace {
 
-const RbsfModel& twoTipsModel() {
-  static const RbsfModel model(test::twoTipsCell());
-  return model;
-}
-
-const Plan& twoTipsPlan() {
-  static const Plan plan = test::twoTipsPlan(twoTipsModel());
-  return plan;
-}
+const RbsfModel& twoTipsModel() { return test::sharedTwoTipsModel(); }
+const Plan& twoTipsPlan() { return test::sharedTwoTipsPlan(); }
 
 TEST(Certificate, DrawsStayWithinTheCellsUncertainty) {
   const Cell cell = test::makeCell(test::ShapeKind::kEllipse, 3);

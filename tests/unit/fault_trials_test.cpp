@@ -19,15 +19,8 @@
 namespace rbsf::plan {
 namespace {
 
-const RbsfModel& twoTipsModel() {
-  static const RbsfModel model(test::twoTipsCell());
-  return model;
-}
-
-const Plan& twoTipsPlan() {
-  static const Plan plan = test::twoTipsPlan(twoTipsModel());
-  return plan;
-}
+const RbsfModel& twoTipsModel() { return test::sharedTwoTipsModel(); }
+const Plan& twoTipsPlan() { return test::sharedTwoTipsPlan(); }
 
 TEST(FaultTrials, ACellWithoutFaultsDrawsAsBeforeAndFaultsAreTheSeeds) {
   Cell faulty = twoTipsModel().cell();

@@ -115,6 +115,16 @@ inline plan::Plan twoTipsPlan(const RbsfModel& model, double amplitude = M_PI / 
   return plan;
 }
 
+/// twoTipsCell()'s model and its default twoTipsPlan(), built once per test binary.
+inline const RbsfModel& sharedTwoTipsModel() {
+  static const RbsfModel model(twoTipsCell());
+  return model;
+}
+inline const plan::Plan& sharedTwoTipsPlan() {
+  static const plan::Plan plan = twoTipsPlan(sharedTwoTipsModel());
+  return plan;
+}
+
 /// A plan that holds the part at rest at q0 for `duration` on the set that holds it best
 /// (planner/hold_plan.h), its law the one the cell's sensing allows.
 inline plan::Plan holdPlan(const RbsfModel& model, const VecQ& q0, double duration) {

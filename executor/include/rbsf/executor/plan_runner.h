@@ -46,6 +46,10 @@ struct LoadOptions {
   bool accept_other_evidence = false;
 };
 
+/// \brief Read the plan file `path` (plan_file.h readPlanJson) into `record`; false, with the
+///        reader's message in `why`, when it cannot be read or parsed.
+bool readPlanFile(const std::string& path, plan::PlanRecord& record, std::string* why);
+
 /// \brief Plans published to one real-time loop, and their execution (file comment).
 class PlanRunner {
  public:

@@ -30,6 +30,10 @@ struct FaultDraw {
   bool any() const { return firstStep() >= 0; }
 };
 
+/// \brief SplitMix64: decorrelates the generators of neighbouring trials and seeds (the
+///        trials' draws and their faults' draw mix their seeds with it).
+std::uint64_t splitMix64(std::uint64_t x);
+
 /// \brief The faults of trial `index` of `seed` over `steps` steps of h (faults.h), from a
 ///        generator of their own; `inputs` = m + 1.
 FaultDraw drawFaults(const Faults& faults, const Plan& plan, std::uint64_t seed, int index,
