@@ -175,6 +175,51 @@ TEST(ExecutionStatus, AHoldAnywhereOnThePlanRestsThePartWhereThePlanWas) {
   }
 }
 
+TEST(ExecutionStatus, AResumedRunPlansFromWhereItIsHeldAndReachesTheGoal) {
+  const plan::Plan plan = plan::readPlanJson(turnFile()).plan;
+  ReorientationController c(kDefaultCell);
+  std::string why;
+  ASSERT_TRUE(c.loadFile(turnFile(), &why)) << why;
+  CellRun run(c, plan);
+  long n = 0;
+  for (const long at = std::lround(0.5 * plan.duration() / run.h); n < at; ++n)
+    ASSERT_TRUE(run.tick(n));
+  c.hold();
+  for (const long end = n + std::lround(1.0 / run.h); n < end; ++n) ASSERT_TRUE(run.tick(n));
+  Pose held;
+  double theta = 0.0;
+  ASSERT_TRUE(c.heldState(held, theta));
+  ReorientationRequest r;
+  r.problem.goal = plan.goal;
+  r.method = planner::PipelineMethod::kAuto;
+  r.planner = rbsf::test::withoutClock(r.planner);
+  r.planner.max_propagations = 200000;
+  r.support.max_expansions = 100000;
+  r.certificate.trials = 4;
+  r.certificate.required_rate = 0.4;
+  r.accept_uncertified = true;
+  ASSERT_TRUE(c.resume(r));
+  // The loop keeps holding while the worker plans (the held plan stays published).
+  while (c.status() == ControllerStatus::kPlanning) ASSERT_TRUE(run.tick(n++));
+  c.wait();
+  ASSERT_EQ(c.status(), ControllerStatus::kReady) << c.result().message;
+  EXPECT_EQ(c.planId(), 2u);
+  const plan::Plan& again = c.result().record.plan;
+  EXPECT_NEAR(again.start.x, held.x, 1e-9);
+  EXPECT_NEAR(again.start_theta, theta, 1e-9);
+  // The new plan from its t = 0, the plant where the hold left it.
+  const long steps = std::lround((again.duration() + 1.0) / run.h);
+  for (long k = 0; k < steps; ++k) {
+    run.sensors.joints(run.state.q, run.joints);
+    ASSERT_TRUE(c.track(k * run.h, run.joints, run.tau, run.status));
+    run.sim.step(run.state, run.tau, run.ws);
+    ASSERT_TRUE(run.state.q.allFinite());
+  }
+  EXPECT_NE(run.status.verdict, ExecutionVerdict::kHolding) << toString(run.status.hold_reason);
+  EXPECT_LT(std::hypot(run.state.q[0] - plan.goal.x, run.state.q[1] - plan.goal.y), 0.01);
+  EXPECT_LT(std::abs(run.state.q[2] - plan.goal.phi), 2.0 * M_PI / 180.0);
+}
+
 TEST(ExecutionStatus, AHoldSlowsThePlansTimeToAStopAndItsReferenceToRest) {
   // s' = 1 - (t - t_h) / hold_stop: the plan's time stops at t_h + hold_stop / 2, and the
   // reference's velocity is the plan's times s', zero from then on.
