@@ -106,7 +106,7 @@ Push push(ReorientationController& c, const plan::Plan& plan, CellRun& run, doub
   return p;
 }
 
-TEST(ExecutionStatus, APartPushedOffItsTubeIsReportedWithin20msAndHeldOnTheFingersFor5s) {
+TEST(ExecutionStatus, APartPushedOffCourseIsReportedWithin20msAndHeldOnTheFingersFor5s) {
   const plan::Plan plan = plan::readPlanJson(turnFile()).plan;
   std::string why;
   // Where the pushed part leaves its tube: the same run with the hold off (the status still
