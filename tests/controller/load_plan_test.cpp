@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rbsf/controller/reorientation_controller.h"
@@ -118,25 +119,25 @@ TEST(LoadPlan, APlanWhoseEvidenceIsAnotherCellsIsRefusedUnlessAccepted) {
     EXPECT_TRUE(runner.load(record, &none, accept)) << none;
     return why;
   };
+  auto expectRefused = [&](Cell cell, const std::string& names) {
+    const std::string why = refusal(std::move(cell));
+    EXPECT_NE(why.find(names), std::string::npos) << why;
+  };
   Cell slippery = base;
   slippery.friction.mu_static = 0.3;
-  EXPECT_NE(refusal(slippery).find("static friction mu_s is 0.5 in the plan, 0.3 in this cell"),
-            std::string::npos)
-      << refusal(slippery);
+  expectRefused(slippery, "static friction mu_s is 0.5 in the plan, 0.3 in this cell");
   Cell kinetic = base;
   kinetic.friction.mu_kinetic = 0.5;
-  EXPECT_NE(refusal(kinetic).find("kinetic friction mu_k"), std::string::npos) << refusal(kinetic);
+  expectRefused(kinetic, "kinetic friction mu_k");
   Cell wider = base;
   wider.uncertainty.mass = 0.3;
-  EXPECT_NE(refusal(wider).find("uncertainty.mass is 0.05 in the plan, 0.3 in this cell"),
-            std::string::npos)
-      << refusal(wider);
+  expectRefused(wider, "uncertainty.mass is 0.05 in the plan, 0.3 in this cell");
   Cell blind = base;
   blind.sensing.part_pose.present = false;
-  EXPECT_NE(refusal(blind).find("this cell does not see it"), std::string::npos) << refusal(blind);
+  expectRefused(blind, "this cell does not see it");
   Cell late = base;
   late.sensing.part_pose.latency = 0.05;
-  EXPECT_NE(refusal(late).find("latency"), std::string::npos) << refusal(late);
+  expectRefused(late, "latency");
   // Its own cell takes it without being told.
   executor::PlanRunner same(base);
   std::string why;

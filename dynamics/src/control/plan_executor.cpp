@@ -138,7 +138,6 @@ bool PlanExecutor::plausible(double t, const VecU& joints) {
 }
 
 void PlanExecutor::step(double t, const VecU& joints, VecU& tau) {
-  const double h = schedule_.timeStep();
   status_.flags = 0;
   if (!std::isfinite(t)) {
     ++status_.bad_readings;
@@ -147,8 +146,8 @@ void PlanExecutor::step(double t, const VecU& joints, VecU& tau) {
     tau = have_tau_ ? good_tau_ : at_stamp_.tau;
     return;
   }
-  if (started_ && t < last_t_ - 0.5 * h) reset();  // time went back: a new run
-  if (started_ && t > last_t_ + 1.5 * h) status_.flags |= kFlagLateTick;
+  if (started_ && t < last_t_ - 0.5 * h_) reset();  // time went back: a new run
+  if (started_ && t > last_t_ + 1.5 * h_) status_.flags |= kFlagLateTick;
   const bool finite_joints = joints.size() == good_joints_.size() && joints.allFinite();
   if (finite_joints && started_ && !plausible(t, joints)) {
     // A jump no actuator can make in one period: a spike, bridged like a bad reading.
@@ -271,10 +270,8 @@ void PlanExecutor::judge(double t) {
       hold(HoldReason::kStalePose);
   }
   if (!law_.holding() && leaving && limits_.hold_on_leaving) {
+    hold(HoldReason::kLeaving);
     s.verdict = ExecutionVerdict::kLeaving;  // this tick's; held from the next on
-    law_.hold();
-    s.hold_reason = HoldReason::kLeaving;
-    s.hold_time = t;
     return;
   }
   if (law_.holding()) {
@@ -286,10 +283,10 @@ void PlanExecutor::judge(double t) {
       kFlagTipSlipping | kFlagSliderStuck | kFlagStrokeError | kFlagContactOpen | kFlagLateTick;
   if (leaving)
     s.verdict = ExecutionVerdict::kLeaving;
-  else if (t >= schedule_.planEnd() && (s.flags & degrading) == 0)
-    s.verdict = ExecutionVerdict::kDone;
   else if ((s.flags & degrading) != 0)
     s.verdict = ExecutionVerdict::kDegraded;
+  else if (t >= schedule_.planEnd())
+    s.verdict = ExecutionVerdict::kDone;
   else
     s.verdict = ExecutionVerdict::kOnPlan;
 }

@@ -68,8 +68,8 @@ std::string flagsText(std::uint32_t flags);
 
 /// \brief The bands and times of the verdict (file comment). The defaults sit above what
 ///        certified runs of the default cell reach under the cell's noise and uncertainty
-///        (docs/notes/2026-11-29-execution-status.md) and below what a part sliding off
-///        reaches within a few ticks.
+///        (so a sound run does not raise a false alarm) and below what a part sliding off
+///        reaches within a few ticks (so a real one is caught while it can still be held).
 struct ExecutionLimits {
   double degraded_position = 0.01;             ///< part position deviation [m]
   double degraded_angle = 2.0 * M_PI / 180.0;  ///< part angle deviation [rad]
