@@ -8,12 +8,14 @@
 
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "rbsf/dynamics/control/contact_force_qp.h"
 #include "rbsf/dynamics/control/control_law.h"
 #include "rbsf/dynamics/control/reference_trajectory.h"
 #include "rbsf/dynamics/core/holding.h"
 #include "rbsf/dynamics/core/placement.h"
+#include "rbsf/dynamics/core/rollout.h"
 #include "rbsf/dynamics/core/simulator.h"
 
 namespace rbsf {
@@ -95,6 +97,41 @@ void BM_SimulatorStepSliding(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SimulatorStepSliding)->Arg(3);
+
+/// A 10 s rollout at 1 kHz (10,000 steps) of the default cell from rest under its holding
+/// inputs held open loop: the base tips to its limit and the part slides (stick, slip and a
+/// limit), every step's sample kept. The C++ side of the Python rollout's goal
+/// (bench/python_bench.py runs the same rollout through rbsf.Simulator.rollout).
+void BM_Rollout10s(benchmark::State& state) {
+  const RbsfModel model(benchCell(3, 0.5));
+  const VecQ q0 = restingConfiguration(model, Pose{0.1, 0.40, 0.0}, 0.0);
+  ModelData d(3);
+  model.updateContacts(q0, d);
+  const HoldingSolution hold = holdingTorques(model, q0, d);
+  const VecU tau = hold.tau;
+  const Simulator sim(model);
+  SimulatorWorkspace ws(3);
+  std::vector<TrajectorySample> samples;
+  samples.reserve(10000);
+  for (auto _ : state) {
+    samples.clear();
+    SimState s(q0, VecQ::Zero(7));
+    rollout(
+        sim, s, 10000, ws,
+        [&](const SimState&, long, VecU& u) {
+          u = tau;
+          return true;
+        },
+        [&](const SimState& now, const StepReport& r, const VecU& u, long) {
+          samples.push_back(trajectorySample(now, r, u));
+          return true;
+        });
+    benchmark::DoNotOptimize(samples.data());
+  }
+  state.counters["steps"] = static_cast<double>(samples.size());
+  state.counters["end_x"] = samples.back().q[layout::kX];
+}
+BENCHMARK(BM_Rollout10s)->Unit(benchmark::kMillisecond);
 
 /// A reference the size of an optimised plan: 101 knots and 100 tau ramps over 2 s.
 ReferenceTrajectory benchReference(const VecQ& q0) {

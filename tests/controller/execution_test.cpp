@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "rbsf/controller/reorientation_controller.h"
 #include "rbsf/dynamics/control/plan_executor.h"
@@ -172,6 +173,30 @@ TEST(ExecutionStatus, AHoldAnywhereOnThePlanRestsThePartWhereThePlanWas) {
     c.start();
     ASSERT_TRUE(c.track(0.0, run.joints, run.tau, run.status));
     EXPECT_NE(run.status.verdict, ExecutionVerdict::kHolding);
+  }
+}
+
+TEST(ExecutionStatus, ARunStartedAgainRepeatsTheFirstRunBitForBit) {
+  // start() resets the law: the same readings give the same inputs, to the last bit (the
+  // closest-point searches included, which would otherwise start from the last run's).
+  const plan::Plan plan = plan::readPlanJson(turnFile()).plan;
+  ReorientationController c(kDefaultCell);
+  std::string why;
+  ASSERT_TRUE(c.loadFile(turnFile(), &why)) << why;
+  std::vector<VecU> first;
+  {
+    CellRun run(c, plan);
+    for (long n = 0; n < 1500; ++n) {
+      ASSERT_TRUE(run.tick(n));
+      first.push_back(run.tau);
+    }
+  }
+  c.start();
+  CellRun again(c, plan);
+  for (long n = 0; n < 1500; ++n) {
+    ASSERT_TRUE(again.tick(n));
+    ASSERT_TRUE((again.tau.array() == first[static_cast<std::size_t>(n)].array()).all())
+        << "tick " << n;
   }
 }
 

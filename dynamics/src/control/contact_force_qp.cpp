@@ -30,6 +30,11 @@ ContactForceQp::ContactForceQp(const RbsfModel& model, const ContactForceSetting
   x_ = QpVecN::Zero(layout_.size());
 }
 
+void ContactForceQp::reset() {
+  data_.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
+  contacts_q_.setConstant(std::numeric_limits<double>::quiet_NaN());
+}
+
 const ModelData& ContactForceQp::updateContacts(const VecQ& q) {
   if ((q.array() == contacts_q_.array()).all()) return data_;
   model_.updateContacts(q, data_);

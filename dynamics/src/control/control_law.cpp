@@ -70,6 +70,10 @@ void ControlLaw::reset() {
   applied_.setZero();
   xi_.setZero();
   holding_ = false;
+  // The closest-point searches start afresh, as in the first run (the joint-only law keeps
+  // state_ across runs): a restart repeats that run bit for bit.
+  state_.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
+  qp_.reset();
 }
 
 void ControlLaw::hold() {

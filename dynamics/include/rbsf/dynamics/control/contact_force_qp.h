@@ -164,6 +164,10 @@ class ContactForceQp {
   ///        vdot)_c| / (m_o g), moments per m_o g x 0.1 m (the cost's metric).
   double motionError(const VecU& tau, const VecQ& vdot) const;
 
+  /// \brief Forget the last solve's contact geometry and closest-point hints: the next solve
+  ///        searches every closest point afresh, as after construction, so that a law that
+  ///        restarts repeats its first run bit for bit.
+  void reset();
   const ContactForceSettings& settings() const { return settings_; }
   /// \brief The workspace of the contact geometry (its xi_hint seeds the closest points).
   ModelData& data() { return data_; }

@@ -1,0 +1,337 @@
+// Planning from Python: the pipeline (plan, refine, certify) on a worker thread while the
+// caller's thread, GIL released between looks, delivers progress events, watches Ctrl-C
+// and a cancel event; and the benchmark problem suites.
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "rbsf/bench/problem_suite.h"
+#include "rbsf/planner/pipeline/reorientation_pipeline.h"
+
+namespace rbsf::python {
+
+namespace {
+
+/// One pipeline event as plain values (the event's references die with it).
+struct PlanEvent {
+  std::string kind;  ///< "stage", "search", "plan found", "refined", "judged"
+  std::string text;  ///< what a progress line says
+  double elapsed = 0.0;
+  std::uint64_t propagations = 0;
+  double best_distance = 0.0;
+};
+
+PlanEvent eventOf(const planner::PipelineEvent& e) {
+  PlanEvent out;
+  if (const auto* s = std::get_if<planner::StageStarted>(&e)) {
+    out.kind = "stage";
+    out.text = planner::stageText(s->stage, s->attempt.method(), s->attempt.seed);
+  } else if (const auto* p = std::get_if<planner::SearchProgress>(&e)) {
+    out.kind = "search";
+    out.elapsed = p->progress.elapsed, out.propagations = p->progress.propagations;
+    out.best_distance = p->progress.best_distance;
+    out.text = "closest " + std::to_string(out.best_distance) + " (1 = 1 cm or 2 deg)";
+  } else if (const auto* f = std::get_if<planner::PlanFound>(&e)) {
+    out.kind = "plan found";
+    out.text = std::string(plan::toString(f->plan.status)) + " plan, planned phases " +
+               f->plan.plannedPhases() + ", " + std::to_string(f->plan.pivots()) + " pivots";
+  } else if (const auto* r = std::get_if<planner::PlanRefined>(&e)) {
+    out.kind = "refined";
+    out.text = r->refinement.refined ? "the refined plan kept" : "the planner's plan kept";
+  } else if (const auto* j = std::get_if<planner::AttemptJudged>(&e)) {
+    out.kind = "judged";
+    out.text =
+        j->attempt.certificate.ran ? plan::verdictText(j->attempt.certificate) : j->attempt.note;
+  }
+  return out;
+}
+
+/// The pipeline's run on a worker thread (file comment). Ctrl-C or an exception in the
+/// progress callback cancel the run, wait for it and are raised; a set `cancel` event
+/// cancels it and returns its outcome (status "cancelled").
+planner::PipelineOutcome runPipeline(const RbsfModel& model,
+                                     const planner::PipelineSettings& settings,
+                                     const planner::Problem& problem, const py::object& progress,
+                                     const py::object& cancel_event) {
+  planner::ReorientationPipeline pipeline(model, settings);  // bad settings: ValueError here
+  std::atomic<bool> cancel{false}, done{false};
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::vector<PlanEvent> queue;
+  planner::PipelineOutcome outcome;
+  std::exception_ptr failure;
+  planner::RunContext context;
+  context.cancel = &cancel;
+  if (!progress.is_none())
+    context.on_event = [&](const planner::PipelineEvent& e) {
+      PlanEvent event = eventOf(e);
+      std::lock_guard<std::mutex> lock(mutex);
+      queue.push_back(std::move(event));
+      wake.notify_one();
+    };
+  std::thread worker([&] {
+    try {
+      outcome = pipeline.run(problem, context);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    done = true;
+    wake.notify_one();
+  });
+  std::optional<py::error_already_set> raised;  // Ctrl-C, or the callback's exception
+  const auto deliver = [&] {
+    std::vector<PlanEvent> events;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      events.swap(queue);
+    }
+    for (const PlanEvent& e : events) {
+      if (raised) return;
+      try {
+        progress(e);
+      } catch (py::error_already_set& error) {
+        raised.emplace(std::move(error));
+        cancel = true;
+      }
+    }
+  };
+  while (true) {
+    {
+      py::gil_scoped_release release;
+      std::unique_lock<std::mutex> lock(mutex);
+      wake.wait_for(lock, std::chrono::milliseconds(50),
+                    [&] { return done.load() || !queue.empty(); });
+    }
+    deliver();
+    if (done) break;
+    if (!raised && PyErr_CheckSignals() != 0) {
+      raised.emplace();  // takes the KeyboardInterrupt set by the signal handler
+      cancel = true;
+    }
+    if (!cancel_event.is_none() && cancel_event.attr("is_set")().cast<bool>()) cancel = true;
+  }
+  {
+    py::gil_scoped_release release;
+    worker.join();
+  }
+  deliver();
+  if (raised) throw std::move(*raised);
+  if (failure) std::rethrow_exception(failure);
+  return outcome;
+}
+
+/// The pipeline's settings with plan-reorientation's defaults: the refinement on.
+planner::PipelineSettings defaultSettings() {
+  planner::PipelineSettings s;
+  s.optimize = true;
+  return s;
+}
+
+std::string methodName(const planner::PipelineSettings& s) {
+  switch (s.method) {
+    case planner::PipelineMethod::kAuto:
+      return "auto";
+    case planner::PipelineMethod::kSupport:
+      return "support";
+    case planner::PipelineMethod::kKinodynamic:
+      return planner::toString(s.planner.planner);
+  }
+  return "auto";
+}
+
+void setMethod(planner::PipelineSettings& s, const std::string& name) {
+  if (name == "auto") {
+    s.method = planner::PipelineMethod::kAuto;
+  } else if (name == "support") {
+    s.method = planner::PipelineMethod::kSupport;
+  } else if (const auto kinodynamic = planner::parsePlanner(name)) {
+    s.method = planner::PipelineMethod::kKinodynamic;
+    s.planner.planner = *kinodynamic;
+  } else {
+    throw InputError("method: unknown planner '" + name +
+                     "' (choose from auto, support, KPIECE1, RRT, SST, EST, PDST)");
+  }
+}
+
+}  // namespace
+
+void bindPipeline(py::module_& m) {
+  py::class_<PlanEvent>(m, "PlanEvent", "One event of a planning run, for progress callbacks.")
+      .def_readonly("kind", &PlanEvent::kind, "stage, search, plan found, refined or judged")
+      .def_readonly("text", &PlanEvent::text)
+      .def_readonly("elapsed", &PlanEvent::elapsed, "search: seconds so far")
+      .def_readonly("propagations", &PlanEvent::propagations)
+      .def_readonly("best_distance", &PlanEvent::best_distance, "search: tolerance units")
+      .def("__repr__",
+           [](const PlanEvent& e) { return "PlanEvent(" + e.kind + ": " + e.text + ")"; });
+
+  py::class_<planner::Problem>(m, "Problem", "A reorientation problem: start at rest, goal.")
+      .def(py::init([](const Pose& start, const Pose& goal, double start_theta, bool absolute_angle,
+                       double position_tolerance, double angle_tolerance) {
+             planner::Problem p;
+             p.start = start, p.goal = goal, p.start_theta = start_theta;
+             p.absolute_angle = absolute_angle;
+             p.tolerance.position = position_tolerance, p.tolerance.angle = angle_tolerance;
+             planner::checkTolerance(p.tolerance);
+             return p;
+           }),
+           py::arg("start"), py::arg("goal"), py::arg("start_theta") = 0.0,
+           py::arg("absolute_angle") = false, py::arg("position_tolerance") = 0.01,
+           py::arg("angle_tolerance") = 2.0 * M_PI / 180.0)
+      .def_readwrite("start", &planner::Problem::start)
+      .def_readwrite("goal", &planner::Problem::goal)
+      .def_readwrite("start_theta", &planner::Problem::start_theta)
+      .def_readwrite("absolute_angle", &planner::Problem::absolute_angle)
+      .def_property_readonly("position_tolerance",
+                             [](const planner::Problem& p) { return p.tolerance.position; })
+      .def_property_readonly("angle_tolerance",
+                             [](const planner::Problem& p) { return p.tolerance.angle; });
+
+  py::class_<planner::PipelineSettings>(
+      m, "PlanSettings",
+      "The pipeline's settings (reorientation_pipeline.h) with plan-reorientation's defaults. "
+      "Budgets (max_expansions, max_propagations) give the same plan on any machine where "
+      "time_limit does not bind first.")
+      .def(py::init(&defaultSettings))
+      .def_property("method", &methodName, &setMethod,
+                    "auto (support, then KPIECE1), support, or KPIECE1, RRT, SST, EST, PDST")
+      .def_property(
+          "time_limit", [](const planner::PipelineSettings& s) { return s.planner.time_limit; },
+          [](planner::PipelineSettings& s, double v) { s.planner.time_limit = v; },
+          "the searches' budget together [s]")
+      .def_property(
+          "seed", [](const planner::PipelineSettings& s) { return s.planner.seed; },
+          [](planner::PipelineSettings& s, std::uint32_t v) { s.planner.seed = v; })
+      .def_property(
+          "max_propagations",
+          [](const planner::PipelineSettings& s) { return s.planner.max_propagations; },
+          [](planner::PipelineSettings& s, std::uint64_t v) { s.planner.max_propagations = v; },
+          "kinodynamic propagations per search (0: none)")
+      .def_property(
+          "decisive_modes",
+          [](const planner::PipelineSettings& s) { return s.planner.decisive_modes.enabled; },
+          [](planner::PipelineSettings& s, bool v) { s.planner.decisive_modes.enabled = v; })
+      .def_readwrite("attempts", &planner::PipelineSettings::max_attempts,
+                     "kinodynamic searches at most (0: while the budget lasts)")
+      .def_readwrite("optimize", &planner::PipelineSettings::optimize, "refine exact plans")
+      .def_property(
+          "max_expansions",
+          [](const planner::PipelineSettings& s) { return s.support.max_expansions; },
+          [](planner::PipelineSettings& s, long v) { s.support.max_expansions = v; },
+          "support planner: expansions over all its searches (0: none)")
+      .def_property(
+          "friction_uses",
+          [](const planner::PipelineSettings& s) { return s.support.friction_uses; },
+          [](planner::PipelineSettings& s, const std::vector<double>& v) {
+            s.support.friction_uses = v;
+          })
+      .def_property(
+          "simple_turns",
+          [](const planner::PipelineSettings& s) { return s.support.simple_turn_friction_uses; },
+          [](planner::PipelineSettings& s, const std::vector<double>& v) {
+            s.support.simple_turn_friction_uses = v;
+          },
+          "support planner: friction uses of the simple turns searched first")
+      .def_property(
+          "knots", [](const planner::PipelineSettings& s) { return s.optimizer.knots; },
+          [](planner::PipelineSettings& s, int v) { s.optimizer.knots = v; })
+      .def_property(
+          "optimize_time_limit",
+          [](const planner::PipelineSettings& s) { return s.optimizer.max_solve_time; },
+          [](planner::PipelineSettings& s, double v) { s.optimizer.max_solve_time = v; })
+      .def_property(
+          "optimize_iterations",
+          [](const planner::PipelineSettings& s) { return s.optimizer.max_iterations; },
+          [](planner::PipelineSettings& s, int v) { s.optimizer.max_iterations = v; })
+      .def_property(
+          "optimize_tolerance",
+          [](const planner::PipelineSettings& s) { return s.optimizer.tolerance; },
+          [](planner::PipelineSettings& s, double v) { s.optimizer.tolerance = v; })
+      .def_readwrite("certificate", &planner::PipelineSettings::certificate);
+
+  py::class_<planner::PipelineAttempt>(m, "Attempt", "One search and its plan's certificate.")
+      .def_property_readonly("search",
+                             [](const planner::PipelineAttempt& a) {
+                               return a.search == planner::SearchKind::kSupport ? "support"
+                                                                                : "kinodynamic";
+                             })
+      .def_readonly("planner", &planner::PipelineAttempt::planner)
+      .def_readonly("seed", &planner::PipelineAttempt::seed)
+      .def_readonly("found", &planner::PipelineAttempt::found)
+      .def_readonly("exact", &planner::PipelineAttempt::exact)
+      .def_readonly("refined", &planner::PipelineAttempt::refined)
+      .def_readonly("cancelled", &planner::PipelineAttempt::cancelled)
+      .def_readonly("search_time", &planner::PipelineAttempt::search_time, "[s]")
+      .def_readonly("wall_time", &planner::PipelineAttempt::wall_time, "[s]")
+      .def_readonly("expansions", &planner::PipelineAttempt::expansions)
+      .def_readonly("phases", &planner::PipelineAttempt::phases)
+      .def_readonly("certificate", &planner::PipelineAttempt::certificate)
+      .def_readonly("note", &planner::PipelineAttempt::note)
+      .def_property_readonly(
+          "reach",
+          [](const planner::PipelineAttempt& a) -> py::object {
+            if (!a.reach.measured) return py::none();
+            return py::str(a.reach.text());
+          },
+          "what a support search reached when it found no path, and the rule that stopped it");
+
+  py::class_<planner::PipelineOutcome>(m, "PlanResult", "How a planning run ended.")
+      .def_property_readonly(
+          "status",
+          [](const planner::PipelineOutcome& o) {
+            return std::string(planner::statusText(o.status));
+          },
+          "certified, not certified, approximate, no plan or cancelled")
+      .def_property_readonly("certified",
+                             [](const planner::PipelineOutcome& o) {
+                               return o.status == planner::PipelineStatus::kCertified;
+                             })
+      .def_property_readonly(
+          "record",
+          [](const planner::PipelineOutcome& o) -> py::object {
+            if (o.status == planner::PipelineStatus::kNoPlan || o.record.plan.samples.empty())
+              return py::none();
+            return py::cast(o.record);
+          },
+          "the plan kept with its certificate (None: no plan)")
+      .def_readonly("attempts", &planner::PipelineOutcome::attempts)
+      .def_readonly("chosen", &planner::PipelineOutcome::chosen,
+                    "index of the attempt kept (-1: none)")
+      .def_readonly("best_distance", &planner::PipelineOutcome::best_distance)
+      .def_readonly("wall_time", &planner::PipelineOutcome::wall_time, "[s]")
+      .def("__repr__", [](const planner::PipelineOutcome& o) {
+        return "PlanResult(" + std::string(planner::statusText(o.status)) + ")";
+      });
+
+  m.def(
+      "plan",
+      [](const RbsfModel& model, const planner::Problem& problem,
+         const planner::PipelineSettings& settings, const py::object& progress,
+         const py::object& cancel) {
+        return runPipeline(model, settings, problem, progress, cancel);
+      },
+      py::arg("model"), py::arg("problem"), py::arg("settings") = defaultSettings(),
+      py::arg("progress") = py::none(), py::arg("cancel") = py::none(),
+      "Plan, refine and certify (the pipeline of plan-reorientation) on a worker thread. "
+      "`progress(event)` is called on this thread with each PlanEvent; `cancel` is any object "
+      "with is_set() (threading.Event): once set, the run stops and returns status "
+      "'cancelled'. Ctrl-C stops the run and raises KeyboardInterrupt within a second.");
+
+  py::class_<bench::BenchProblem>(m, "BenchProblem", "One problem of a benchmark suite.")
+      .def_readonly("name", &bench::BenchProblem::name)
+      .def_readonly("cell_path", &bench::BenchProblem::cell_path)
+      .def_readonly("problem", &bench::BenchProblem::problem);
+  m.def("load_problem_suite", &bench::loadProblemSuite, py::arg("path"),
+        "The problems of a benchmark suite file (tools/bench/problem_suite.h).");
+}
+
+}  // namespace rbsf::python

@@ -1,0 +1,16 @@
+#pragma once
+/// \file
+/// \brief The parts of the Python module `rbsf._rbsf`, one per file (module.cpp calls them
+///        in order).
+
+#include <pybind11/pybind11.h>
+
+namespace rbsf::python {
+
+void bindModel(pybind11::module_& m);       ///< cells, poses, the model, its analyses
+void bindSimulator(pybind11::module_& m);   ///< the simulator: step and rollout
+void bindPlans(pybind11::module_& m);       ///< plans, plan files, certificates, trials
+void bindPipeline(pybind11::module_& m);    ///< planning and the benchmark suites
+void bindController(pybind11::module_& m);  ///< the controller facade and its status
+
+}  // namespace rbsf::python
