@@ -10,8 +10,8 @@
             same rollout in C++, every sample kept).
 
 Usage: PYTHONPATH=build/python /usr/bin/python3 bench/python_bench.py [--build build]
-       [--repeats 7]. Medians over the repeats; the C++ figures come from
-build/bench/rbsf_micro_bench run here, so both sides see the same machine and load.
+       [--repeats 7]. Medians over the repeats; the C++ rollout is build/bench/rbsf_micro_bench
+run in turns with the Python one, so that both see the same machine and load.
 """
 
 import argparse
@@ -28,19 +28,14 @@ import rbsf
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
-def cpp_medians(build, repeats):
-    """Median real time [ns] of the two C++ benchmarks."""
+def cpp_rollout(build):
+    """Real time [ns] of BM_Rollout10s, one run of at least 0.3 s."""
     out = subprocess.run(
-        [str(build / "bench" / "rbsf_micro_bench"),
-         "--benchmark_filter=BM_Rollout10s$",
-         f"--benchmark_repetitions={repeats}", "--benchmark_report_aggregates_only",
-         "--benchmark_format=json"], check=True, capture_output=True, text=True).stdout
-    medians = {}
-    for b in json.loads(out)["benchmarks"]:
-        if b.get("aggregate_name") == "median":
-            scale = {"ns": 1.0, "us": 1e3, "ms": 1e6}[b["time_unit"]]
-            medians[b["run_name"]] = b["real_time"] * scale
-    return medians
+        [str(build / "bench" / "rbsf_micro_bench"), "--benchmark_filter=BM_Rollout10s$",
+         "--benchmark_min_time=0.3", "--benchmark_format=json"],
+        check=True, capture_output=True, text=True).stdout
+    b = json.loads(out)["benchmarks"][0]
+    return b["real_time"] * {"ns": 1.0, "us": 1e3, "ms": 1e6}[b["time_unit"]]
 
 
 def track_medians(repeats, calls=20000):
@@ -75,19 +70,25 @@ def track_medians(repeats, calls=20000):
     return statistics.median(python), statistics.median(cpp)
 
 
-def rollout_median(repeats):
-    """Median time of the 10 s rollout [ns] and its final x (the C++ run's end_x)."""
+def rollout_medians(build, repeats, runs=10):
+    """Median time [ns] of the 10 s rollout from Python and in C++ (BM_Rollout10s), taken in
+    turns so that both see the same load, and the final x of the Python run (the C++ run's
+    end_x)."""
     model = rbsf.Model(str(ROOT / "cells" / "default.yaml"))
     q = model.resting_configuration((0.1, 0.40, 0.0))
     tau = model.analyze(q, np.zeros(7), np.zeros(4)).holding.tau[np.newaxis, :]
     sim = rbsf.Simulator(model)
-    times = []
+    python, cpp = [], []
     for _ in range(repeats):
-        start = time.perf_counter_ns()
-        run = sim.rollout(q, tau, [10000])
-        times.append(time.perf_counter_ns() - start)
+        cpp.append(cpp_rollout(build))
+        times = []
+        for _ in range(runs):
+            start = time.perf_counter_ns()
+            run = sim.rollout(q, tau, [10000])
+            times.append(time.perf_counter_ns() - start)
+        python.append(statistics.median(times))
     assert len(run) == 10000
-    return statistics.median(times), run.q[-1, 0]
+    return statistics.median(python), statistics.median(cpp), run.q[-1, 0]
 
 
 def main():
@@ -95,10 +96,8 @@ def main():
     parser.add_argument("--build", default=str(ROOT / "build"))
     parser.add_argument("--repeats", type=int, default=7)
     args = parser.parse_args()
-    cpp = cpp_medians(pathlib.Path(args.build), args.repeats)
     py_track, c_track = track_medians(args.repeats)
-    py_rollout, end_x = rollout_median(args.repeats)
-    c_rollout = cpp["BM_Rollout10s"]
+    py_rollout, c_rollout, end_x = rollout_medians(pathlib.Path(args.build), args.repeats)
     print(f"track() with status: Python {py_track / 1e3:.2f} us, C++ loop {c_track / 1e3:.2f} us, "
           f"overhead {(py_track - c_track) / 1e3:.2f} us per call (goal: under 3 us)")
     print(f"10 s rollout at 1 kHz: Python {py_rollout / 1e6:.2f} ms, C++ {c_rollout / 1e6:.2f} ms, "

@@ -20,6 +20,9 @@ packages=(
   # Headless Chromium renders the HTML report in the picture tests.
   chromium
   clang-14 libclang-rt-14-dev
+  # The Python module (python/, docs/python.md), its tests and examples, on Debian's python3.
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib
+  python3-yaml
 )
 
 missing=()

@@ -10,7 +10,8 @@
 #   scripts/rbsf.sh tsan      build the controller facade's tests with ThreadSanitizer, run them
 #   scripts/rbsf.sh consumer  install build/ into build/install, build tests/consumer (every
 #                             component) and tests/consumer_plan (COMPONENTS executor,
-#                             OMPL and Ipopt hidden) against it, run them
+#                             OMPL and Ipopt hidden) against it, run them, and import the
+#                             installed Python package
 #   scripts/rbsf.sh fuzz      build the libFuzzer targets (clang, ASan + UBSan) and run each
 #                             for RBSF_FUZZ_RUNS inputs (default 150000) from the fixed seed
 #                             RBSF_FUZZ_SEED (default 1), capped at RBSF_FUZZ_SECONDS (default
@@ -46,6 +47,10 @@ consumer() {  # the installed package as an outside project sees it (tests/consu
     --quiet --out build/consumer_plan/plan.json
   ./build/consumer_plan/rbsf_plan_client build/install/share/rbsf/cells/default.yaml \
     build/consumer_plan/plan.json
+  # The Python package as installed (component python), away from the build tree.
+  (cd build/install && PYTHONPATH="$PWD/lib/python3/dist-packages" /usr/bin/python3 -c \
+    'import rbsf, sys; print("installed", rbsf.__file__, rbsf.Model(sys.argv[1]).resting_configuration((0.1, 0.40, 0.0)))' \
+    share/rbsf/cells/default.yaml)
 }
 
 cmd="${1:-}"

@@ -12,6 +12,7 @@ says where the part got and which rule refused the moves beyond.
 """
 
 import argparse
+import math
 import pathlib
 
 import rbsf
@@ -37,6 +38,10 @@ def answer(cell, max_expansions):
         return f"certified: {plan.pivots} pivots, {plan.duration:.1f} s ({result.record.certificate.verdict})"
     if result.status == "not certified":
         return f"a plan, NOT certified: {result.record.certificate.verdict}"
+    if result.status == "approximate":  # a path whose closed-loop run missed the goal
+        end = result.record.plan.samples.q[-1]
+        return (f"approximate: a path whose run ends {math.hypot(end[0] - GOAL[0], end[1] - GOAL[1]):.3f} m "
+                f"and {math.degrees(abs(end[2] - GOAL[2])):.1f} deg from the goal")
     reach = [a.reach for a in result.attempts if a.reach]
     return f"{result.status}: the search {reach[0] if reach else 'found no path'}"
 

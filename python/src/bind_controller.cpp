@@ -100,20 +100,26 @@ void bindFacade(py::module_& m) {
             VecU measured(nu), tau(nu);
             for (int k = 0; k < nu; ++k)
               measured[k] = joints.data()[k];  // NaN: the guard bridges it
-            bool ok;
-            if (status.is_none()) {
-              ok = c.track(t, measured, tau);
-            } else {
-              ok = c.track(t, measured, tau, status.cast<ExecutionStatus&>());
+            if (!status.is_none() && !py::isinstance<ExecutionStatus>(status))
+              throw InputError("status: expected an rbsf.ExecutionStatus");
+            // `out` is written in place: only a contiguous float64 array of the right size
+            // (a conversion would write into a copy the caller never sees).
+            double* target = nullptr;
+            if (!out.is_none()) {
+              const py::array a =
+                  py::isinstance<py::array>(out) ? out.cast<py::array>() : py::array();
+              if (!a || !a.dtype().is(py::dtype::of<double>()) || a.ndim() != 1 ||
+                  a.shape(0) != nu || !a.writeable() || !(a.flags() & py::array::c_style))
+                throw InputError("out: expected a writeable, contiguous float64 array of " +
+                                 std::to_string(nu) + " numbers");
+              target = static_cast<double*>(out.cast<py::array>().mutable_data());
             }
+            const bool ok = status.is_none()
+                                ? c.track(t, measured, tau)
+                                : c.track(t, measured, tau, status.cast<ExecutionStatus&>());
             if (!ok) throw std::runtime_error("track: no plan is published");
-            if (out.is_none()) return toArray(tau);
-            auto target = out.cast<py::array_t<double>>();
-            if (target.ndim() != 1 || target.shape(0) != nu || !target.writeable())
-              throw InputError("out: expected a writeable float64 array of " + std::to_string(nu) +
-                               " numbers");
-            double* p = target.mutable_data();
-            for (int k = 0; k < nu; ++k) p[k] = tau[k];
+            if (target == nullptr) return toArray(tau);
+            for (int k = 0; k < nu; ++k) target[k] = tau[k];
             return out;
           },
           py::arg("t"), py::arg("joints"), py::arg("out") = py::none(),

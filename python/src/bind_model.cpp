@@ -14,6 +14,12 @@ namespace rbsf::python {
 
 namespace {
 
+/// `v`, refused with "<what> must be finite" when it is not.
+double finite(double v, const char* what) {
+  if (!std::isfinite(v)) throw InputError(std::string(what) + " must be finite");
+  return v;
+}
+
 /// A pose from a Pose or any sequence of three numbers.
 Pose poseFromSequence(const py::sequence& s) {
   if (py::len(s) != 3)
@@ -73,9 +79,15 @@ void bindCell(py::module_& m) {
            }),
            py::arg("x") = 0.0, py::arg("y") = 0.0, py::arg("phi") = 0.0)
       .def(py::init(&poseFromSequence), py::arg("xyphi"))
-      .def_readwrite("x", &Pose::x)
-      .def_readwrite("y", &Pose::y)
-      .def_readwrite("phi", &Pose::phi)
+      .def_property(
+          "x", [](const Pose& p) { return p.x; },
+          [](Pose& p, double v) { p.x = finite(v, "pose: x"); }, "[m]")
+      .def_property(
+          "y", [](const Pose& p) { return p.y; },
+          [](Pose& p, double v) { p.y = finite(v, "pose: y"); }, "[m]")
+      .def_property(
+          "phi", [](const Pose& p) { return p.phi; },
+          [](Pose& p, double v) { p.phi = finite(v, "pose: phi"); }, "[rad]")
       .def("__iter__", [](const Pose& p) { return py::iter(py::make_tuple(p.x, p.y, p.phi)); })
       .def("__repr__", [](const Pose& p) {
         return "Pose(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +

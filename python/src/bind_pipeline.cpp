@@ -7,7 +7,6 @@
 #include <condition_variable>
 #include <exception>
 #include <mutex>
-#include <optional>
 #include <thread>
 #include <vector>
 
@@ -62,6 +61,10 @@ planner::PipelineOutcome runPipeline(const RbsfModel& model,
                                      const planner::Problem& problem, const py::object& progress,
                                      const py::object& cancel_event) {
   planner::ReorientationPipeline pipeline(model, settings);  // bad settings: ValueError here
+  if (!cancel_event.is_none() && !py::hasattr(cancel_event, "is_set"))
+    throw InputError("cancel: expected an object with is_set(), such as threading.Event");
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+    throw InputError("progress: expected a callable taking a PlanEvent");
   std::atomic<bool> cancel{false}, done{false};
   std::mutex mutex;
   std::condition_variable wake;
@@ -87,7 +90,13 @@ planner::PipelineOutcome runPipeline(const RbsfModel& model,
     done = true;
     wake.notify_one();
   });
-  std::optional<py::error_already_set> raised;  // Ctrl-C, or the callback's exception
+  // Ctrl-C, or an exception of the callback or the cancel event: the run is cancelled and,
+  // once the worker has stopped, it is raised.
+  std::exception_ptr raised;
+  const auto stop = [&](std::exception_ptr error) {
+    if (!raised) raised = error;
+    cancel = true;
+  };
   const auto deliver = [&] {
     std::vector<PlanEvent> events;
     {
@@ -98,35 +107,47 @@ planner::PipelineOutcome runPipeline(const RbsfModel& model,
       if (raised) return;
       try {
         progress(e);
-      } catch (py::error_already_set& error) {
-        raised.emplace(std::move(error));
-        cancel = true;
+      } catch (...) {
+        stop(std::current_exception());
       }
     }
   };
-  while (true) {
-    {
-      py::gil_scoped_release release;
-      std::unique_lock<std::mutex> lock(mutex);
-      wake.wait_for(lock, std::chrono::milliseconds(50),
-                    [&] { return done.load() || !queue.empty(); });
+  try {
+    while (true) {
+      {
+        py::gil_scoped_release release;
+        std::unique_lock<std::mutex> lock(mutex);
+        wake.wait_for(lock, std::chrono::milliseconds(50),
+                      [&] { return done.load() || !queue.empty(); });
+      }
+      deliver();
+      if (done) break;
+      if (raised) continue;
+      if (PyErr_CheckSignals() != 0)  // the KeyboardInterrupt the signal handler set
+        stop(std::make_exception_ptr(py::error_already_set()));
+      else if (!cancel_event.is_none() && py::bool_(cancel_event.attr("is_set")()))
+        cancel = true;
     }
-    deliver();
-    if (done) break;
-    if (!raised && PyErr_CheckSignals() != 0) {
-      raised.emplace();  // takes the KeyboardInterrupt set by the signal handler
-      cancel = true;
-    }
-    if (!cancel_event.is_none() && cancel_event.attr("is_set")().cast<bool>()) cancel = true;
+  } catch (...) {
+    stop(std::current_exception());
   }
   {
     py::gil_scoped_release release;
     worker.join();
   }
   deliver();
-  if (raised) throw std::move(*raised);
+  if (raised) std::rethrow_exception(raised);
   if (failure) std::rethrow_exception(failure);
   return outcome;
+}
+
+/// Shares of the friction cone, each in (0, 1] (plan-reorientation's --friction-use rule).
+std::vector<double> frictionUses(const std::vector<double>& uses, const std::string& key) {
+  for (double use : uses)
+    if (!(use > 0.0 && use <= 1.0))
+      throw InputError(key + ": each share of the friction cone must be in (0, 1] (got " +
+                       std::to_string(use) + ")");
+  return uses;
 }
 
 /// The pipeline's settings with plan-reorientation's defaults: the refinement on.
@@ -189,7 +210,13 @@ void bindPipeline(py::module_& m) {
            py::arg("angle_tolerance") = 2.0 * M_PI / 180.0)
       .def_readwrite("start", &planner::Problem::start)
       .def_readwrite("goal", &planner::Problem::goal)
-      .def_readwrite("start_theta", &planner::Problem::start_theta)
+      .def_property(
+          "start_theta", [](const planner::Problem& p) { return p.start_theta; },
+          [](planner::Problem& p, double v) {
+            if (!std::isfinite(v)) throw InputError("start_theta: must be finite");
+            p.start_theta = v;
+          },
+          "the base angle at the start [rad]")
       .def_readwrite("absolute_angle", &planner::Problem::absolute_angle)
       .def_property_readonly("position_tolerance",
                              [](const planner::Problem& p) { return p.tolerance.position; })
@@ -220,25 +247,38 @@ void bindPipeline(py::module_& m) {
           "decisive_modes",
           [](const planner::PipelineSettings& s) { return s.planner.decisive_modes.enabled; },
           [](planner::PipelineSettings& s, bool v) { s.planner.decisive_modes.enabled = v; })
-      .def_readwrite("attempts", &planner::PipelineSettings::max_attempts,
-                     "kinodynamic searches at most (0: while the budget lasts)")
+      .def_property(
+          "attempts", [](const planner::PipelineSettings& s) { return s.max_attempts; },
+          [](planner::PipelineSettings& s, int v) {
+            if (v < 0)
+              throw InputError("attempts: must be at least 0 (got " + std::to_string(v) + ")");
+            s.max_attempts = v;
+          },
+          "kinodynamic searches at most (0: while the budget lasts)")
       .def_readwrite("optimize", &planner::PipelineSettings::optimize, "refine exact plans")
       .def_property(
           "max_expansions",
           [](const planner::PipelineSettings& s) { return s.support.max_expansions; },
-          [](planner::PipelineSettings& s, long v) { s.support.max_expansions = v; },
+          [](planner::PipelineSettings& s, long v) {
+            if (v < 0)
+              throw InputError("max_expansions: must be at least 0, 0 for none (got " +
+                               std::to_string(v) + ")");
+            s.support.max_expansions = v;
+          },
           "support planner: expansions over all its searches (0: none)")
       .def_property(
           "friction_uses",
           [](const planner::PipelineSettings& s) { return s.support.friction_uses; },
           [](planner::PipelineSettings& s, const std::vector<double>& v) {
-            s.support.friction_uses = v;
-          })
+            s.support.friction_uses = frictionUses(v, "friction_uses");
+          },
+          "support planner: the sticking forces' share of the friction cone, one search per "
+          "value in order, each in (0, 1]")
       .def_property(
           "simple_turns",
           [](const planner::PipelineSettings& s) { return s.support.simple_turn_friction_uses; },
           [](planner::PipelineSettings& s, const std::vector<double>& v) {
-            s.support.simple_turn_friction_uses = v;
+            s.support.simple_turn_friction_uses = frictionUses(v, "simple_turns");
           },
           "support planner: friction uses of the simple turns searched first")
       .def_property(
@@ -282,7 +322,8 @@ void bindPipeline(py::module_& m) {
             if (!a.reach.measured) return py::none();
             return py::str(a.reach.text());
           },
-          "what a support search reached when it found no path, and the rule that stopped it");
+          "what the support searches reached and the rule that refused most moves beyond the "
+          "closest pose (the reach answer when they found no path); None when none ran");
 
   py::class_<planner::PipelineOutcome>(m, "PlanResult", "How a planning run ended.")
       .def_property_readonly(

@@ -40,6 +40,21 @@ Samples samplesOf(const std::vector<TrajectorySample>& in, int m) {
 
 int fingersOf(const plan::Plan& p) { return static_cast<int>(p.q0.size()) - 4; }
 
+/// The roles of the segment each sample's step belongs to (a sample at a segment's end is
+/// that segment's).
+std::vector<std::string> sampleRoles(const plan::Plan& p) {
+  std::vector<std::string> out;
+  out.reserve(p.samples.size());
+  if (p.segments.empty()) return std::vector<std::string>(p.samples.size());
+  std::size_t j = 0;
+  double end = p.segments[0].duration;
+  for (const TrajectorySample& x : p.samples) {
+    while (j + 1 < p.segments.size() && x.t > end + 1e-9) end += p.segments[++j].duration;
+    out.push_back(rolesText(p.segments[j].contacts, fingersOf(p)));
+  }
+  return out;
+}
+
 void bindSamplesAndPlan(py::module_& m) {
   py::class_<Samples>(m, "Samples",
                       "Sampled states as arrays: t (N), q and v (N, m + 4), tau (N, m + 1, "
@@ -103,6 +118,9 @@ void bindSamplesAndPlan(py::module_& m) {
           "each segment's start time [s]")
       .def_property_readonly("samples",
                              [](const plan::Plan& p) { return samplesOf(p.samples, fingersOf(p)); })
+      .def_property_readonly("sample_roles", &sampleRoles,
+                             "each sample's planned contact roles (its segment's): S stick, "
+                             "+ / - slide, L lifted, F free")
       .def("__repr__", [](const plan::Plan& p) {
         return "Plan(" + std::string(plan::toString(p.status)) + ", " + p.plannedPhases() + ", " +
                std::to_string(p.duration()) + " s)";
@@ -222,8 +240,11 @@ void bindTrials(py::module_& m) {
       "true state as Samples).");
   m.def(
       "draw_trial",
-      [](const Cell& cell, const plan::Plan& p, std::uint64_t seed, int index) {
-        const plan::TrialDraw d = plan::drawTrial(cell, p, seed, index);
+      [](const RbsfModel& model, const plan::Plan& p, std::uint64_t seed, int index) {
+        if (p.q0.size() != model.configDim())
+          throw InputError("the plan is for " + std::to_string(p.q0.size() - 4) +
+                           " fingers, the cell has " + std::to_string(model.numFingers()));
+        const plan::TrialDraw d = plan::drawTrial(model.cell(), p, seed, index);
         py::dict out;
         out["part_mass"] = d.cell.object.mass;
         out["part_inertia"] = d.cell.object.inertia;
@@ -234,8 +255,9 @@ void bindTrials(py::module_& m) {
         out["actuator_gain"] = toArray(d.actuator_gain);
         return out;
       },
-      py::arg("cell"), py::arg("plan"), py::arg("seed"), py::arg("index"),
-      "The plant, start and actuators trial `index` of `seed` draws (trial.h) as a dict.");
+      py::arg("model"), py::arg("plan"), py::arg("seed"), py::arg("index"),
+      "The plant, start and actuators trial `index` of `seed` draws on the model's cell "
+      "(trial.h), as a dict.");
 }
 
 }  // namespace

@@ -187,7 +187,8 @@ void bindSimulator(py::module_& m) {
                         "stepping through stick, slip, separation and renewed contact.")
       .def(py::init<const RbsfModel&, const SimulatorSettings&>(), py::arg("model"),
            py::arg("settings") = SimulatorSettings(), py::keep_alive<1, 2>())
-      .def_property_readonly("settings", &Simulator::settings, py::return_value_policy::copy)
+      .def_property_readonly("settings", &Simulator::settings, py::return_value_policy::copy,
+                             "a copy of its settings (a simulator's settings are fixed)")
       .def(
           "step",
           [](const Simulator& sim, SimState& state, const DoubleArray& tau) {

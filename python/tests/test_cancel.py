@@ -52,3 +52,17 @@ def test_an_error_in_the_progress_callback_stops_the_run_and_is_raised(model):
 
     with pytest.raises(RuntimeError, match="callback failed on stage"):
         rbsf.plan(model, QUARTER, long_settings(), progress=fail)
+
+
+def test_a_bad_cancel_or_progress_argument_raises_before_the_run(model):
+    with pytest.raises(ValueError, match="cancel: expected an object with is_set"):
+        rbsf.plan(model, QUARTER, long_settings(), cancel=object())
+    with pytest.raises(ValueError, match="progress: expected a callable"):
+        rbsf.plan(model, QUARTER, long_settings(), progress=3)
+
+    class Broken:
+        def is_set(self):
+            raise RuntimeError("the cell's stop button is unplugged")
+
+    with pytest.raises(RuntimeError, match="unplugged"):
+        rbsf.plan(model, QUARTER, long_settings(), cancel=Broken())

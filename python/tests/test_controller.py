@@ -75,8 +75,11 @@ def test_bad_controller_inputs_raise_and_nan_readings_are_bridged(model, plan_fi
     reading[1] = np.nan
     tau = controller.track(0.001, reading, status=status)  # bridged by the last good reading
     assert np.all(np.isfinite(tau)) and "joint" in status.flags_text
-    with pytest.raises(ValueError, match="out"):
-        controller.track(0.002, q0[3:], out=np.zeros(2))
+    for out in (np.zeros(2), np.zeros(4, dtype=np.float32), np.zeros(8)[::2], [0.0] * 4):
+        with pytest.raises(ValueError, match="out: expected a writeable, contiguous float64"):
+            controller.track(0.002, q0[3:], out=out)
+    with pytest.raises(ValueError, match="status: expected an rbsf.ExecutionStatus"):
+        controller.track(0.002, q0[3:], status={})
 
 
 def test_a_log_replayed_in_cpp_gives_the_inputs_of_the_python_loop(model, plan_file):

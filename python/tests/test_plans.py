@@ -36,6 +36,10 @@ def test_a_plan_file_reads_into_arrays_and_writes_back_unchanged(plan_file, tmp_
     assert plan.pivots >= 1 and plan.planned_phases.count("P") == plan.pivots
     assert len(plan.segment_starts) == len(plan.segments)
     assert all(len(s.roles) == 3 for s in plan.segments)
+    roles = plan.sample_roles
+    assert len(roles) == n and roles[0] == plan.segments[0].roles
+    assert roles[-1] == plan.segments[-1].roles
+    assert set(roles) == {s.roles for s in plan.segments if s.steps > 0}
     # The plan ends at its goal: the last sample's pose within the tolerances.
     assert np.hypot(*(samples.q[-1, :2] - [0.1, 0.40])) < 0.01
     assert abs(samples.q[-1, 2] - rbsf.deg(-15)) < rbsf.deg(2)
@@ -62,7 +66,7 @@ def test_a_replayed_trial_is_its_draw_run_closed_loop(default_cell, model, plan_
     nominal, trace = rbsf.replay_trial(model, plan, -1)
     assert nominal.success and nominal.end == "done"
     assert trace.q.shape[1] == 7 and np.all(np.isfinite(trace.q))
-    draw = rbsf.draw_trial(default_cell, plan, 1, 3)
+    draw = rbsf.draw_trial(model, plan, 1, 3)
     assert draw["part_mass"] != default_cell.part_mass  # drawn within the uncertainty
     assert abs(draw["part_mass"] / 24.0 - 1.0) <= 0.05
     outcome, trace = rbsf.replay_trial(model, plan, 3)
@@ -80,6 +84,15 @@ def test_bad_plan_inputs_raise_value_errors(model, tmp_path):
         settings.method = "RRTX"
     with pytest.raises(ValueError, match="tolerance"):
         rbsf.Problem((0.1, 0.4, 0.0), (0.1, 0.4, 0.1), position_tolerance=-1.0)
+    for key, value in (("max_expansions", -5), ("attempts", -1), ("friction_uses", [0.5, 1.5]),
+                       ("simple_turns", [0.0])):
+        with pytest.raises(ValueError, match=key):
+            setattr(settings, key, value)
+    problem = rbsf.Problem((0.1, 0.4, 0.0), (0.1, 0.4, 0.1))
+    with pytest.raises(ValueError, match="pose: x must be finite"):
+        problem.goal.x = float("nan")
+    with pytest.raises(ValueError, match="start_theta"):
+        problem.start_theta = float("inf")
     settings.time_limit = -1.0
     with pytest.raises(ValueError, match="time"):
         rbsf.plan(model, rbsf.Problem((0.1, 0.4, 0.0), (0.1, 0.4, 0.1)), settings)
