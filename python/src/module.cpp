@@ -10,6 +10,7 @@ PYBIND11_MODULE(_rbsf, m) {
   rbsf::python::bindModel(m);
   rbsf::python::bindSimulator(m);
   rbsf::python::bindPlans(m);
+  rbsf::python::bindPlanSettings(m);
   rbsf::python::bindPipeline(m);
   rbsf::python::bindController(m);
 }
