@@ -10,6 +10,7 @@ with the library's message naming the key, argument or value.
 import json as _json
 import math as _math
 
+from ._rbsf import __version__  # noqa: F401
 from ._rbsf import (  # noqa: F401
     Attempt,
     BenchProblem,

@@ -785,6 +785,9 @@ class Controller:
 
 # Pure-Python helpers (__init__.py)
 
+#: The library's version (the CMake project's).
+__version__: str
+
 #: Phase codes of Trajectory.phase and Samples.phase.
 PHASES: tuple[str, str, str, str]
 #: Contact mode codes of Trajectory.mode.

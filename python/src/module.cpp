@@ -4,6 +4,7 @@
 
 PYBIND11_MODULE(_rbsf, m) {
   m.doc() = "rbsf: planning, simulation and execution for the RBSF jig (docs/python.md)";
+  m.attr("__version__") = RBSF_VERSION;  // the CMake project's version
   // Bad input (a cell key, an array's shape, a plan file) is a ValueError with the
   // library's message; other failures stay RuntimeError.
   pybind11::register_exception<rbsf::InputError>(m, "InputError", PyExc_ValueError);

@@ -83,3 +83,11 @@ def test_a_pose_is_a_tuple_or_a_pose():
     assert tuple(rbsf.Pose([1, 2, 3])) == (1.0, 2.0, 3.0)
     with pytest.raises(ValueError, match="finite"):
         rbsf.Pose(0.0, float("inf"), 0.0)
+
+
+def test_the_version_is_the_projects():
+    from conftest import SOURCE
+    import re
+
+    version = re.search(r"project\(rbsf VERSION ([0-9.]+)", (SOURCE / "CMakeLists.txt").read_text())
+    assert rbsf.__version__ == version.group(1)
