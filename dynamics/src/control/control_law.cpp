@@ -70,9 +70,11 @@ void ControlLaw::reset() {
   applied_.setZero();
   xi_.setZero();
   holding_ = false;
-  // The closest-point searches start afresh, as in the first run (the joint-only law keeps
-  // state_ across runs): a restart repeats that run bit for bit.
-  state_.xi_hint.setConstant(std::numeric_limits<double>::quiet_NaN());
+  // The estimate's state (its closest-point hints and contact memory among it) starts as at
+  // construction, since the joint-only law never rebuilds it: a restart repeats the first run
+  // bit for bit.
+  const int n = schedule_.model().configDim();
+  state_ = SimState(VecQ::Zero(n), VecQ::Zero(n));
   qp_.reset();
 }
 
