@@ -1,6 +1,6 @@
 """rbsf: planning, simulation and execution for the RBSF intelligent jig (docs/python.md).
 
-Type stub of the package rbsf: the classes and functions of the extension rbsf._rbsf
+Type hints of the package rbsf: the classes and functions of the extension rbsf._rbsf
 (python/src/*.cpp) and the helpers of __init__.py. State order q = (x, y, phi, theta,
 l_1..l_m), tau = (tau_theta, tau_1..tau_m); SI units, angles in radians.
 """
@@ -267,63 +267,6 @@ class ContactStep:
     def slip(self) -> float:
         """[m/s]"""
 
-class Trajectory:
-    """A rollout: row k is the state after step k, the input held over it, its contacts."""
-
-    @property
-    def t(self) -> NDArray[numpy.float64]:
-        """(N,)"""
-    @property
-    def q(self) -> NDArray[numpy.float64]:
-        """(N, m + 4)"""
-    @property
-    def v(self) -> NDArray[numpy.float64]:
-        """(N, m + 4)"""
-    @property
-    def tau(self) -> NDArray[numpy.float64]:
-        """(N, m + 1), held over step k."""
-    @property
-    def f_n(self) -> NDArray[numpy.float64]:
-        """(N, m) [N]"""
-    @property
-    def f_t(self) -> NDArray[numpy.float64]:
-        """(N, m) [N]"""
-    @property
-    def slip(self) -> NDArray[numpy.float64]:
-        """(N, m) [m/s]"""
-    @property
-    def mode(self) -> NDArray[numpy.int8]:
-        """(N, m): 0 stick, 1 slide, 2 separated (rbsf.MODES)."""
-    @property
-    def phase(self) -> NDArray[numpy.int8]:
-        """(N,): 0 C, 1 P, 2 U, 3 unsupported (rbsf.PHASES)."""
-    @property
-    def final_state(self) -> SimState:
-        """The state after the last step."""
-    @property
-    def fell_at(self) -> float:
-        """Time the part fell off the fingers and the run stopped [s]; -1: never."""
-    def __len__(self) -> int: ...
-
-class Simulator:
-    """The hybrid contact simulator: stick, slip, separation and renewed contact."""
-
-    def __init__(self, model: Model, settings: SimulatorSettings = ...) -> None: ...
-    @property
-    def settings(self) -> SimulatorSettings:
-        """The settings (a copy)."""
-    def step(self, state: SimState, tau: ArrayLike) -> tuple[list[ContactStep], str]:
-        """Advance `state` (in place) by one step with tau held; returns (contacts, phase)."""
-    def rollout(
-        self,
-        start: SimState | ArrayLike,
-        tau: ArrayLike,
-        steps: Sequence[int] | NDArray[numpy.integer[Any]] = ...,
-    ) -> Trajectory:
-        """Hold row j of tau for steps[j] steps from `start`, in C++ without the GIL."""
-
-# Plans, plan files, certificates and trials (bind_plan.cpp)
-
 class Samples:
     """Sampled states as arrays, row k sample k."""
 
@@ -346,6 +289,45 @@ class Samples:
     def phase(self) -> NDArray[numpy.int8]:
         """(N,): 0 C, 1 P, 2 U, 3 unsupported (rbsf.PHASES)."""
     def __len__(self) -> int: ...
+
+class Trajectory(Samples):
+    """A rollout: Samples (row k is the state after step k, the input held over it, f_n and
+    phase) and what the step did at the contacts."""
+
+    @property
+    def f_t(self) -> NDArray[numpy.float64]:
+        """(N, m) [N]"""
+    @property
+    def slip(self) -> NDArray[numpy.float64]:
+        """(N, m) [m/s]"""
+    @property
+    def mode(self) -> NDArray[numpy.int8]:
+        """(N, m): 0 stick, 1 slide, 2 separated (rbsf.MODES)."""
+    @property
+    def final_state(self) -> SimState:
+        """The state after the last step."""
+    @property
+    def fell_at(self) -> float:
+        """Time the part fell off the fingers and the run stopped [s]; -1: never."""
+
+class Simulator:
+    """The hybrid contact simulator: stick, slip, separation and renewed contact."""
+
+    def __init__(self, model: Model, settings: SimulatorSettings = ...) -> None: ...
+    @property
+    def settings(self) -> SimulatorSettings:
+        """The settings (a copy)."""
+    def step(self, state: SimState, tau: ArrayLike) -> tuple[list[ContactStep], str]:
+        """Advance `state` (in place) by one step with tau held; returns (contacts, phase)."""
+    def rollout(
+        self,
+        start: SimState | ArrayLike,
+        tau: ArrayLike,
+        steps: Sequence[int] | NDArray[numpy.integer[Any]] = ...,
+    ) -> Trajectory:
+        """Hold row j of tau for steps[j] steps from `start`, in C++ without the GIL."""
+
+# Plans, plan files, certificates and trials (bind_plan.cpp)
 
 class PlanSegment:
     """tau held (or ramped) over whole steps."""

@@ -16,8 +16,4 @@ void requireFinite(const double* data, py::ssize_t n, const std::string& name) {
       throw InputError(name + ": entry " + std::to_string(i) + " is not finite");
 }
 
-py::array_t<double> matrix(py::ssize_t rows, py::ssize_t cols) {
-  return py::array_t<double>({rows, cols});
-}
-
 }  // namespace rbsf::python

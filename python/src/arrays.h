@@ -49,7 +49,10 @@ py::array_t<double> toArray(const Vec& v) {
   return out;
 }
 
-/// \brief A 2-D array (rows, cols) of doubles, filled by the caller.
-py::array_t<double> matrix(py::ssize_t rows, py::ssize_t cols);
+/// \brief A 2-D array (rows, cols), filled by the caller.
+template <class T = double>
+py::array_t<T> matrix(py::ssize_t rows, py::ssize_t cols) {
+  return py::array_t<T>({rows, cols});
+}
 
 }  // namespace rbsf::python

@@ -11,23 +11,20 @@
 #include "bindings.h"
 #include "rbsf/dynamics/core/rollout.h"
 #include "rbsf/dynamics/core/simulator.h"
+#include "samples.h"
 
 namespace rbsf::python {
 
 namespace {
 
-/// A rollout's trajectory: row k is the state after step k and what the step did.
-struct Trajectory {
-  py::array_t<double> t, q, v, tau, f_n, f_t, slip;
-  py::array_t<std::int8_t> mode, phase;
+/// A rollout's trajectory: row k is the state after step k (Samples) and what the step did
+/// at the contacts besides their normal forces.
+struct Trajectory : Samples {
+  py::array_t<double> f_t, slip;
+  py::array_t<std::int8_t> mode;        ///< 0 stick, 1 slide, 2 separated
   std::optional<SimState> final_state;  ///< the state after the last step
   double fell_at = -1.0;  ///< time the part fell off the fingers [s], -1 when it did not
 };
-
-template <class T>
-py::array_t<T> rows(py::ssize_t n, py::ssize_t cols) {
-  return cols == 0 ? py::array_t<T>(n) : py::array_t<T>({n, cols});
-}
 
 /// Run `steps[j]` steps of input row j, j = 0, 1, ..., from `start` (file comment).
 Trajectory runRollout(const Simulator& sim, const SimState& start, const DoubleArray& tau,
@@ -58,12 +55,9 @@ Trajectory runRollout(const Simulator& sim, const SimState& start, const DoubleA
     for (int k = 0; k < nu; ++k) inputs[j][k] = tau.at(j, k);
 
   Trajectory out;
-  out.t = rows<double>(total, 0);
-  out.q = rows<double>(total, nq), out.v = rows<double>(total, nq);
-  out.tau = rows<double>(total, nu);
-  out.f_n = rows<double>(total, m), out.f_t = rows<double>(total, m),
-  out.slip = rows<double>(total, m);
-  out.mode = rows<std::int8_t>(total, m), out.phase = rows<std::int8_t>(total, 0);
+  static_cast<Samples&>(out) = allocateSamples(total, m);
+  out.f_t = matrix(total, m), out.slip = matrix(total, m);
+  out.mode = matrix<std::int8_t>(total, m);
   double *t = out.t.mutable_data(), *q = out.q.mutable_data(), *v = out.v.mutable_data(),
          *u = out.tau.mutable_data(), *fn = out.f_n.mutable_data(), *ft = out.f_t.mutable_data(),
          *slip = out.slip.mutable_data();
@@ -164,23 +158,16 @@ void bindSimulator(py::module_& m) {
       .def_readonly("gap", &ContactStepReport::gap, "[m]")
       .def_readonly("slip", &ContactStepReport::slip, "[m/s]");
 
-  py::class_<Trajectory>(m, "Trajectory",
-                         "A rollout: row k is the state after step k (t, q, v), the input "
-                         "held over it and its contacts (f_n, f_t, slip; mode 0 stick, 1 "
-                         "slide, 2 separated; phase 0 C, 1 P, 2 U, 3 unsupported).")
-      .def_readonly("t", &Trajectory::t)
-      .def_readonly("q", &Trajectory::q)
-      .def_readonly("v", &Trajectory::v)
-      .def_readonly("tau", &Trajectory::tau)
-      .def_readonly("f_n", &Trajectory::f_n)
+  py::class_<Trajectory, Samples>(m, "Trajectory",
+                                  "A rollout: Samples (row k: the state after step k, the input "
+                                  "held over it, f_n, phase) and its contacts' f_t, slip and "
+                                  "mode (0 stick, 1 slide, 2 separated).")
       .def_readonly("f_t", &Trajectory::f_t)
       .def_readonly("slip", &Trajectory::slip)
       .def_readonly("mode", &Trajectory::mode)
-      .def_readonly("phase", &Trajectory::phase)
       .def_readonly("final_state", &Trajectory::final_state)
       .def_readonly("fell_at", &Trajectory::fell_at,
-                    "time the part fell off the fingers and the run stopped [s]; -1: never")
-      .def("__len__", [](const Trajectory& tr) { return tr.t.shape(0); });
+                    "time the part fell off the fingers and the run stopped [s]; -1: never");
 
   py::class_<Simulator>(m, "Simulator",
                         "The hybrid contact simulator (simulator.h): velocity-level time "
