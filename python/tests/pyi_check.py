@@ -1,9 +1,9 @@
-"""Check the type stub python/rbsf/__init__.pyi against the live module rbsf, both ways: the
+"""Check the type hints (.pyi) python/rbsf/__init__.pyi against the live module rbsf, both ways: the
 public names and their kinds, each class's members (read-only ones as @property, read-write
 ones as annotations, static methods, constructors) and every signature's parameter names and
 defaults as pybind11 reports them. Prints what differs and exits 1, else prints ok.
 
-Run: PYTHONPATH=build/python /usr/bin/python3 python/tests/stub_check.py [path/to/__init__.pyi]
+Run: PYTHONPATH=build/python /usr/bin/python3 python/tests/pyi_check.py [path/to/__init__.pyi]
 """
 
 import ast
@@ -14,8 +14,8 @@ import sys
 
 import rbsf
 
-STUB = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).parents[1] / "rbsf" / "__init__.pyi")
-tree = ast.parse(STUB.read_text())
+PYI = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).parents[1] / "rbsf" / "__init__.pyi")
+tree = ast.parse(PYI.read_text())
 problems = []
 
 
@@ -29,7 +29,7 @@ def is_type_alias(node):
 
 
 def defined(body):
-    """Names a stub body defines: {name: [nodes]} (imports and type aliases left out)."""
+    """Names a .pyi body defines: {name: [nodes]} (imports and type aliases left out)."""
     out = {}
     for node in body:
         if isinstance(node, (ast.ClassDef, ast.FunctionDef)):
@@ -47,18 +47,18 @@ def decorators(node):
 
 
 # 1. Top-level names, both ways, and their kind.
-stub_top = {n: v for n, v in defined(tree.body).items() if public(n)}
+pyi_top = {n: v for n, v in defined(tree.body).items() if public(n)}
 live_top = {n for n in dir(rbsf) if public(n)}
-for n in sorted(live_top - stub_top.keys()):
-    problems.append(f"top level: {n} is in rbsf, not in the stub")
-for n in sorted(stub_top.keys() - live_top):
-    problems.append(f"top level: {n} is in the stub, not in rbsf")
-for n in sorted(live_top & stub_top.keys()):
-    obj, node = getattr(rbsf, n), stub_top[n][0]
+for n in sorted(live_top - pyi_top.keys()):
+    problems.append(f"top level: {n} is in rbsf, not in the .pyi")
+for n in sorted(pyi_top.keys() - live_top):
+    problems.append(f"top level: {n} is in the .pyi, not in rbsf")
+for n in sorted(live_top & pyi_top.keys()):
+    obj, node = getattr(rbsf, n), pyi_top[n][0]
     kind = ("class" if isinstance(obj, type) else "function" if callable(obj) else "constant")
-    stub_kind = {ast.ClassDef: "class", ast.FunctionDef: "function"}.get(type(node), "constant")
-    if kind != stub_kind:
-        problems.append(f"{n}: a {kind} in rbsf, a {stub_kind} in the stub")
+    pyi_kind = {ast.ClassDef: "class", ast.FunctionDef: "function"}.get(type(node), "constant")
+    if kind != pyi_kind:
+        problems.append(f"{n}: a {kind} in rbsf, a {pyi_kind} in the .pyi")
 
 
 # 2. Signatures: parameter names and defaults as pybind11 (or inspect) reports them.
@@ -107,7 +107,7 @@ def live_signatures(func, name):
     return sigs
 
 
-def stub_signature(node):
+def pyi_signature(node):
     a = node.args
     positional = a.posonlyargs + a.args
     names = [x.arg for x in positional + a.kwonlyargs]
@@ -122,90 +122,90 @@ def stub_signature(node):
     return names, defaults
 
 
-def same_default(stub_node, live_text):
+def same_default(pyi_node, live_text):
     literal = True
     try:
         live_value = ast.literal_eval(live_text)
     except (ValueError, SyntaxError):
         literal = False
-    if isinstance(stub_node, ast.Constant) and stub_node.value is Ellipsis:
+    if isinstance(pyi_node, ast.Constant) and pyi_node.value is Ellipsis:
         # `...`: an object default (pybind11 shows its repr) or a mutable one ([]).
         return not literal or isinstance(live_value, (list, dict, set))
-    stub_value = ast.literal_eval(stub_node)
-    return literal and type(stub_value) is type(live_value) and stub_value == live_value
+    pyi_value = ast.literal_eval(pyi_node)
+    return literal and type(pyi_value) is type(live_value) and pyi_value == live_value
 
 
 def check_signatures(label, func, name, nodes):
     live = live_signatures(func, name)
-    stub = [stub_signature(n) for n in nodes]
-    if len(live) != len(stub):
-        problems.append(f"{label}: {len(live)} overload(s) in rbsf, {len(stub)} in the stub")
+    declared = [pyi_signature(n) for n in nodes]
+    if len(live) != len(declared):
+        problems.append(f"{label}: {len(live)} overload(s) in rbsf, {len(declared)} in the .pyi")
         return
-    for k, ((lnames, ldefaults), (snames, sdefaults)) in enumerate(zip(live, stub)):
+    for k, ((lnames, ldefaults), (snames, sdefaults)) in enumerate(zip(live, declared)):
         where = f"{label}" + (f" (overload {k + 1})" if len(live) > 1 else "")
         if lnames != snames:
-            problems.append(f"{where}: parameters {lnames} in rbsf, {snames} in the stub")
+            problems.append(f"{where}: parameters {lnames} in rbsf, {snames} in the .pyi")
             continue
         if ldefaults.keys() != sdefaults.keys():
             problems.append(f"{where}: defaults of {sorted(ldefaults)} in rbsf, of "
-                            f"{sorted(sdefaults)} in the stub")
+                            f"{sorted(sdefaults)} in the .pyi")
             continue
         for p in ldefaults:
             if not same_default(sdefaults[p], ldefaults[p]):
                 problems.append(f"{where}: {p} defaults to {ldefaults[p]} in rbsf, "
-                                f"{ast.unparse(sdefaults[p])} in the stub")
+                                f"{ast.unparse(sdefaults[p])} in the .pyi")
 
 
-for n in sorted(live_top & stub_top.keys()):
-    obj, nodes = getattr(rbsf, n), stub_top[n]
+for n in sorted(live_top & pyi_top.keys()):
+    obj, nodes = getattr(rbsf, n), pyi_top[n]
     if callable(obj) and not isinstance(obj, type):
         check_signatures(n, obj, n, nodes)
 
 
 # 3. Classes: bases, members both ways, read-only against read-write, methods, signatures.
 checked_classes = 0
-for n in sorted(live_top & stub_top.keys()):
-    cls, node = getattr(rbsf, n), stub_top[n][0]
+for n in sorted(live_top & pyi_top.keys()):
+    cls, node = getattr(rbsf, n), pyi_top[n][0]
     if not isinstance(cls, type) or not isinstance(node, ast.ClassDef):
         continue
     checked_classes += 1
     live_bases = [b.__name__ for b in cls.__bases__ if b.__name__ != "pybind11_object"]
-    stub_bases = [ast.unparse(b) for b in node.bases]
-    if live_bases != stub_bases:
-        problems.append(f"{n}: bases {live_bases} in rbsf, {stub_bases} in the stub")
+    pyi_bases = [ast.unparse(b) for b in node.bases]
+    if live_bases != pyi_bases:
+        problems.append(f"{n}: bases {live_bases} in rbsf, {pyi_bases} in the .pyi")
     inherited = set().union(*(dir(b) for b in cls.__mro__[1:]))
     live = {a for a in dir(cls) if public(a) and (a not in inherited or a in vars(cls))}
     body = defined(node.body)
-    stub = {a for a in body if public(a)}
-    for a in sorted(live - stub):
-        problems.append(f"{n}.{a} is in rbsf, not in the stub")
-    for a in sorted(stub - live):
-        problems.append(f"{n}.{a} is in the stub, not in rbsf")
+    declared = {a for a in body if public(a)}
+    for a in sorted(live - declared):
+        problems.append(f"{n}.{a} is in rbsf, not in the .pyi")
+    for a in sorted(declared - live):
+        problems.append(f"{n}.{a} is in the .pyi, not in rbsf")
     # pybind11 gives a class without py::init a slot __init__ that raises TypeError.
     init = vars(cls).get("__init__")
     has_init = init is not None and type(init).__name__ != "wrapper_descriptor"
     if has_init and "__init__" not in body:
-        problems.append(f"{n}: has a constructor in rbsf, none in the stub")
+        problems.append(f"{n}: has a constructor in rbsf, none in the .pyi")
     if "__init__" in body and not has_init:
-        problems.append(f"{n}: a constructor in the stub, none in rbsf")
-    for a in sorted(live & stub):
+        problems.append(f"{n}: a constructor in the .pyi, none in rbsf")
+    for a in sorted(live & declared):
         raw, snodes = inspect.getattr_static(cls, a), body[a]
         first = snodes[0]
         if isinstance(raw, property):
             read_only = raw.fset is None
             if read_only and not (isinstance(first, ast.FunctionDef)
                                   and "property" in decorators(first)):
-                problems.append(f"{n}.{a}: read-only in rbsf, not a @property in the stub")
+                problems.append(f"{n}.{a}: read-only in rbsf, not a @property in the .pyi")
             if not read_only and not isinstance(first, ast.AnnAssign):
-                problems.append(f"{n}.{a}: read-write in rbsf, not an annotation in the stub")
+                problems.append(f"{n}.{a}: read-write in rbsf, not an annotation in the .pyi")
         elif isinstance(raw, staticmethod):
             if not (isinstance(first, ast.FunctionDef) and "staticmethod" in decorators(first)):
-                problems.append(f"{n}.{a}: a staticmethod in rbsf, not in the stub")
+                problems.append(f"{n}.{a}: a staticmethod in rbsf, not in the .pyi")
             else:
                 check_signatures(f"{n}.{a}", raw.__func__, a, snodes)
         elif callable(raw):
             if not isinstance(first, ast.FunctionDef) or decorators(first) - {"overload"}:
-                problems.append(f"{n}.{a}: a method in rbsf, not a plain def in the stub")
+                problems.append(f"{n}.{a}: a method in rbsf, not a plain def in the .pyi")
             else:
                 check_signatures(f"{n}.{a}", raw, a, snodes)
     if has_init and "__init__" in body:
